@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian packages tcvio builds with, only those that are missing.
+# As root it runs apt-get itself; otherwise it prints the exact command to run.
+set -euo pipefail
+
+packages=(build-essential cmake libceres-dev libeigen3-dev libopencv-dev
+          libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all packages present"
+  exit 0
+fi
+
+cmd="apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends ${missing[*]}"
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install_deps: missing packages: ${missing[*]}" >&2
+  echo "install_deps: run as root:  sudo sh -c '$cmd'" >&2
+  exit 1
+fi
+echo "install_deps: installing ${missing[*]}"
+sh -c "$cmd"
