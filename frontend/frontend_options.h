@@ -28,7 +28,7 @@ struct FeatureTrackerOptions {
   double min_distance_px = 30.0;  // between any two features [px]
   // Shi-Tomasi acceptance: minimum eigenvalue relative to the strongest
   // corner of the image (cv::goodFeaturesToTrack qualityLevel) [-].
-  double corner_quality = 0.01;
+  double corner_quality = 0.002;
   // Features closer than this to the image border are dropped [px].
   int border_px = 2;
   KltOptions klt;
