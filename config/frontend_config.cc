@@ -34,6 +34,7 @@ FeatureTrackerOptions ReadTracker(const YamlNode& node) {
 StereoMatcherOptions ReadStereoMatcher(const YamlNode& node) {
   StereoMatcherOptions o;
   o.klt = ReadKlt(node);
+  o.equalize = node.Get<bool>("equalize");
   o.max_reverse_px = node.Get<double>("max_reverse_px");
   o.max_epipolar_px = node.Get<double>("max_epipolar_px");
   ValidateAt(node, o);

@@ -13,7 +13,8 @@
 //                       virtual_focal_px, clahe, clahe_clip_limit,
 //                       clahe_tiles }
 //     stereo_matcher: { klt_window_px, klt_pyramid_levels, klt_max_iterations,
-//                       klt_epsilon_px, max_reverse_px, max_epipolar_px }
+//                       klt_epsilon_px, equalize, max_reverse_px,
+//                       max_epipolar_px }
 //
 // Every key is required (a missing one is an error, never a silent default);
 // units are those of frontend/frontend_options.h. The cameras' calibration is

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -84,10 +85,16 @@ std::vector<FeatureObservation> StereoMatcher::Match(
     uv0.emplace_back(static_cast<float>(o.uv.x()),
                      static_cast<float>(o.uv.y()));
   }
+  cv::Mat left_matched = left, right_matched = right;
+  if (options_.equalize) {
+    cv::equalizeHist(left, left_matched);
+    cv::equalizeHist(right, right_matched);
+  }
   std::vector<cv::Point2f> uv1, back;
   std::vector<uchar> ok, ok_back;
-  TrackKlt(left, right, options_.klt, uv0, {}, &uv1, &ok);
-  TrackKlt(right, left, options_.klt, uv1, uv0, &back, &ok_back);
+  TrackKlt(left_matched, right_matched, options_.klt, uv0, {}, &uv1, &ok);
+  TrackKlt(right_matched, left_matched, options_.klt, uv1, uv0, &back,
+           &ok_back);
 
   const double max_reverse2 = options_.max_reverse_px * options_.max_reverse_px;
   const int w = right_.calibration().width, h = right_.calibration().height;
