@@ -87,7 +87,11 @@ Args ParseArgs(int argc, char** argv) {
     } else if (a == "--sigma") {
       args.problem.sigma = ParseNumber<double>(a, value());
     } else if (a == "--seed") {
-      args.problem.seed = ParseNumber<uint32_t>(a, value());
+      const long long seed = ParseNumber<long long>(a, value());
+      if (seed < 0 || seed > 0xffffffffLL) {
+        throw std::invalid_argument("--seed must be in [0, 2^32)");
+      }
+      args.problem.seed = static_cast<uint32_t>(seed);
     } else if (a == "--damping") {
       const std::string name = value();
       if (!vio::ParseLmDamping(name, &args.lm.damping)) {

@@ -70,8 +70,9 @@ KernelValue EvaluateKernel(const RobustKernel& kernel, double s) {
 // kernel is flat or concave in r, so a Gauss-Newton model keeping the term
 // would give that residual no (or negative) curvature. From the exercise's
 // start at zero every residual lies beyond c, so the damped normal matrix
-// would vanish and mu0 = tau max diag(J^T W J) would be 0. Ceres' corrector
-// makes the same choice (it applies the correction only when rho'' > 0).
+// would vanish and mu0 = tau max diag(J^T W J) would be 0. (Ceres' corrector
+// is more conservative: it corrects only where rho'' > 0, which for Huber and
+// Cauchy is nowhere.)
 IrlsWeights ComputeIrlsWeights(const RobustKernel& kernel, double r) {
   const double s = r * r;
   const KernelValue v = EvaluateKernel(kernel, s);
