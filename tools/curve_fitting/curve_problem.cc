@@ -5,9 +5,21 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 namespace vio {
+
+namespace {
+
+// A value as text for error messages: "1.5", not "1.500000".
+std::string FormatValue(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
 
 bool CurveProblemOptions::Validate(std::string* message) const {
   auto fail = [message](const std::string& text) {
@@ -20,12 +32,12 @@ bool CurveProblemOptions::Validate(std::string* message) const {
                 ")");
   }
   if (!(std::isfinite(sigma) && sigma >= 0.0)) {
-    return fail("sigma must be finite and >= 0 (got " + std::to_string(sigma) +
+    return fail("sigma must be finite and >= 0 (got " + FormatValue(sigma) +
                 ")");
   }
   if (!(outlier_fraction >= 0.0 && outlier_fraction <= 1.0)) {
     return fail("outlier_fraction must be in [0, 1] (got " +
-                std::to_string(outlier_fraction) + ")");
+                FormatValue(outlier_fraction) + ")");
   }
   if (!(std::isfinite(outlier_max_sigmas) && outlier_min_sigmas >= 0.0 &&
         outlier_min_sigmas <= outlier_max_sigmas)) {

@@ -4,11 +4,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace vio {
 
 namespace {
+
+// A value as text for error messages: "1.5", not "1.500000".
+std::string FormatValue(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -91,7 +99,7 @@ bool LmOptions::Validate(std::string* message) const {
     return false;
   };
   if (!(std::isfinite(tau) && tau > 0.0)) {
-    return fail("tau must be finite and > 0 (got " + std::to_string(tau) + ")");
+    return fail("tau must be finite and > 0 (got " + FormatValue(tau) + ")");
   }
   if (!(gradient_tolerance >= 0.0) || !(step_tolerance >= 0.0)) {
     return fail("gradient_tolerance and step_tolerance must be >= 0");
@@ -123,6 +131,53 @@ DampingState UpdateDamping(LmDamping damping, const DampingState& state,
   return next;
 }
 
+namespace {
+
+// One iteration k of the notes: trials with growing damping until one is
+// accepted. Updates *lin, *state and *summary (p, log, iterations). Returns
+// true and sets summary->termination when a stopping rule fired.
+bool RunIteration(const ResidualFunction& residuals, const LmOptions& options,
+                  int k, Linearisation* lin, DampingState* state,
+                  LmSummary* summary) {
+  for (int rejections = 0;;) {
+    Eigen::VectorXd dp;
+    const bool solved = SolveDamped(*lin, state->mu, &dp);
+    if (solved &&
+        dp.norm() <= options.step_tolerance *
+                         (summary->p.norm() + options.step_tolerance)) {
+      summary->termination = LmTermination::kStep;
+      return true;
+    }
+    LmTrial trial{k, kInf, state->mu, 0.0, -kInf, false};
+    Linearisation trial_lin;
+    if (solved &&
+        Linearise(residuals, options.kernel, summary->p + dp, &trial_lin)) {
+      trial.chi2 = trial_lin.chi2;
+      // dp^T (mu dp + g) = 2 (L(0) - L(dp)) > 0 for any dp != 0, since
+      // (A + mu I) dp = g gives L(0) - L(dp) = dp^T g - 1/2 dp^T A dp.
+      trial.gain_ratio =
+          (lin->chi2 - trial_lin.chi2) / dp.dot(state->mu * dp + lin->g);
+    }
+    trial.accepted = trial.gain_ratio > 0.0;
+    *state = UpdateDamping(options.damping, *state, trial.gain_ratio);
+    trial.mu_next = state->mu;
+    summary->log.push_back(trial);
+    if (trial.accepted) {
+      summary->p += dp;
+      *lin = std::move(trial_lin);
+      ++summary->iterations;
+      summary->termination = LmTermination::kGradient;
+      return lin->g.lpNorm<Eigen::Infinity>() <= options.gradient_tolerance;
+    }
+    if (++rejections >= options.max_rejections) {
+      summary->termination = LmTermination::kTooManyRejections;
+      return true;
+    }
+  }
+}
+
+}  // namespace
+
 LmSummary SolveLevenbergMarquardt(const ResidualFunction& residuals,
                                   const Eigen::VectorXd& p0,
                                   const LmOptions& options) {
@@ -141,50 +196,10 @@ LmSummary SolveLevenbergMarquardt(const ResidualFunction& residuals,
   DampingState state{options.tau * lin.A.diagonal().maxCoeff(), 2.0};
   summary.initial_mu = state.mu;
 
-  bool stop = lin.g.lpNorm<Eigen::Infinity>() <= options.gradient_tolerance;
   summary.termination = LmTermination::kGradient;
-  int k = 0;
-  while (!stop && k < options.max_iterations) {
-    ++k;
-    for (int rejections = 0;;) {
-      Eigen::VectorXd dp;
-      const bool solved = SolveDamped(lin, state.mu, &dp);
-      if (solved &&
-          dp.norm() <= options.step_tolerance *
-                           (summary.p.norm() + options.step_tolerance)) {
-        stop = true;
-        summary.termination = LmTermination::kStep;
-        break;
-      }
-      LmTrial trial{k, kInf, state.mu, 0.0, -kInf, false};
-      Linearisation trial_lin;
-      if (solved &&
-          Linearise(residuals, options.kernel, summary.p + dp, &trial_lin)) {
-        trial.chi2 = trial_lin.chi2;
-        // dp^T (mu dp + g) = 2 (L(0) - L(dp)) > 0 for any dp != 0.
-        trial.gain_ratio =
-            (lin.chi2 - trial_lin.chi2) / dp.dot(state.mu * dp + lin.g);
-      }
-      trial.accepted = trial.gain_ratio > 0.0;
-      state = UpdateDamping(options.damping, state, trial.gain_ratio);
-      trial.mu_next = state.mu;
-      summary.log.push_back(trial);
-      if (trial.accepted) {
-        summary.p += dp;
-        lin = std::move(trial_lin);
-        ++summary.iterations;
-        if (lin.g.lpNorm<Eigen::Infinity>() <= options.gradient_tolerance) {
-          stop = true;
-          summary.termination = LmTermination::kGradient;
-        }
-        break;
-      }
-      if (++rejections >= options.max_rejections) {
-        stop = true;
-        summary.termination = LmTermination::kTooManyRejections;
-        break;
-      }
-    }
+  bool stop = lin.g.lpNorm<Eigen::Infinity>() <= options.gradient_tolerance;
+  for (int k = 1; !stop && k <= options.max_iterations; ++k) {
+    stop = RunIteration(residuals, options, k, &lin, &state, &summary);
   }
   if (!stop) summary.termination = LmTermination::kMaxIterations;
   summary.final_chi2 = lin.chi2;

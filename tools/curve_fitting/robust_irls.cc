@@ -1,13 +1,25 @@
 #include "tools/curve_fitting/robust_irls.h"
 
 #include <cmath>
+#include <sstream>
 
 namespace vio {
+
+namespace {
+
+// A value as text for error messages: "1.5", not "1.500000".
+std::string FormatValue(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
 
 bool RobustKernel::Validate(std::string* message) const {
   if (type != KernelType::kNone && !(std::isfinite(c) && c > 0.0)) {
     *message =
-        "kernel scale c must be finite and > 0 (got " + std::to_string(c) + ")";
+        "kernel scale c must be finite and > 0 (got " + FormatValue(c) + ")";
     return false;
   }
   return true;
