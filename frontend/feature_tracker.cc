@@ -144,7 +144,6 @@ std::vector<FeatureObservation> FeatureTracker::Track(const cv::Mat& image) {
   const cv::Mat current = Preprocess(image);
   std::vector<cv::Mat> pyramid = BuildKltPyramid(current, options_.klt);
   if (!pyramid_.empty()) TrackFromPrevious(pyramid);
-  stats_.tracked = static_cast<int>(points_.size());
   Refill(current);
   image_ = current;
   pyramid_ = std::move(pyramid);
@@ -222,6 +221,7 @@ void FeatureTracker::Refill(const cv::Mat& image) {
     points.push_back(points_[i]);
     ids.push_back(ids_[i]);
     ages.push_back(ages_[i]);
+    ++stats_.tracked;
   }
   const int wanted = options_.max_features - static_cast<int>(points.size());
   if (wanted > 0) {

@@ -26,8 +26,8 @@ namespace vio {
 
 // What one FeatureTracker::Track call did with the tracks it was given.
 struct TrackerStats {
-  int tracked = 0;                // tracks continued into this frame
-  int lost_flow = 0;              // LK failed or ended outside the image
+  int tracked = 0;    // tracks continued into this frame (after all checks)
+  int lost_flow = 0;  // LK failed or ended outside the image
   int lost_forward_backward = 0;  // failed the forward-backward check
   int rejected_fundamental = 0;   // outliers of the fundamental RANSAC
   int dropped_crowded = 0;        // closer than min_distance to an older track
