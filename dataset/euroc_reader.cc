@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <limits>
+#include <map>
+#include <utility>
 
 #include "dataset/csv.h"
 #include "dataset/features_csv.h"
@@ -134,6 +135,23 @@ std::vector<ImageEntry> ReadEurocImageList(const std::string& path,
     }
   }
   return images;
+}
+
+std::vector<FeatureFrame> MergedFeatureFrames(const EurocData& data) {
+  std::map<int64_t, FeatureFrame> by_stamp;
+  for (const EurocCamera& camera : data.cameras) {
+    for (const FeatureFrame& frame : camera.feature_frames) {
+      FeatureFrame& merged = by_stamp[frame.t_ns];
+      merged.t_ns = frame.t_ns;
+      merged.observations.insert(merged.observations.end(),
+                                 frame.observations.begin(),
+                                 frame.observations.end());
+    }
+  }
+  std::vector<FeatureFrame> frames;
+  frames.reserve(by_stamp.size());
+  for (auto& [t_ns, frame] : by_stamp) frames.push_back(std::move(frame));
+  return frames;
 }
 
 EurocData ReadEurocFolder(const std::string& folder) {

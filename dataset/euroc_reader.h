@@ -70,6 +70,11 @@ struct EurocData {
 // features.csv, and for any bad line of any file.
 EurocData ReadEurocFolder(const std::string& folder);
 
+// The feature frames of every camera that has a features.csv, merged into one
+// frame per distinct stamp (a stereo pair shares one), in stamp order; within
+// a frame, cam0's observations come first.
+std::vector<FeatureFrame> MergedFeatureFrames(const EurocData& data);
+
 // The single files, for callers that need only one of them. Each throws
 // DatasetError naming the file (and line) when it is missing or malformed.
 
