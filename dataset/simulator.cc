@@ -100,7 +100,13 @@ CameraCalibration EurocCam1Calibration() {
 }
 
 bool SimulatorOptions::Validate(std::string* message) const {
-  if (!Positive(duration_s)) return Fail(message, "duration_s must be > 0");
+  // 600 s is longer than any EuRoC sequence and keeps memory < ~200 MB.
+  if (!(Positive(duration_s) && duration_s <= 600.0)) {
+    return Fail(message, "duration_s must be in (0, 600]");
+  }
+  if (start_time_ns < 0 || start_time_ns > (int64_t{1} << 62)) {
+    return Fail(message, "start_time_ns must be in [0, 2^62]");
+  }
   if (!Positive(gravity_m_s2)) return Fail(message, "gravity_m_s2 must be > 0");
   std::string m;
   if (!motion.Validate(&m)) return Fail(message, "motion." + m);

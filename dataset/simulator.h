@@ -85,7 +85,8 @@ struct SimulatorOptions {
   SimCameraOptions camera;
   SimRoomOptions room;
 
-  // True when every field is in range and the trajectory stays at least
+  // True when every field is in range (duration_s in (0, 600], start_time_ns
+  // in [0, 2^62]) and the trajectory stays at least
   // 0.5 m inside the room; otherwise false with a message that starts with the
   // offending field's name (sections as in the YAML: "camera.outlier_...").
   bool Validate(std::string* message) const;

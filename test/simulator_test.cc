@@ -205,6 +205,10 @@ TEST(Simulator, InvalidOptionsNameTheField) {
   EXPECT_FALSE(options.Validate(&message));
   EXPECT_EQ(message, "camera.outlier_fraction must be in [0, 1]");
   EXPECT_THROW(Simulate(options), std::invalid_argument);
+  options = SimulatorOptions();
+  options.duration_s = 601.0;
+  EXPECT_FALSE(options.Validate(&message));
+  EXPECT_EQ(message, "duration_s must be in (0, 600]");
 }
 
 }  // namespace
