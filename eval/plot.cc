@@ -17,7 +17,7 @@ namespace {
 const cv::Scalar kWhite(255, 255, 255);
 const cv::Scalar kBlack(0, 0, 0);
 const cv::Scalar kGrid(225, 225, 225);
-const cv::Scalar kGroundTruth(90, 90, 90);
+const cv::Scalar kGroundTruth(150, 150, 150);
 const cv::Scalar kEstimate(200, 110, 0);
 const cv::Scalar kError(40, 40, 210);
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
@@ -131,7 +131,7 @@ void DrawLegend(cv::Mat& image, const Panel& panel,
   cv::rectangle(image, box, kBlack, 1);
   for (int k = 0; k < 2; ++k) {
     const int y = box.y + 17 + 20 * k;
-    cv::line(image, {box.x + 8, y}, {box.x + 38, y}, colours[k], 2,
+    cv::line(image, {box.x + 8, y}, {box.x + 38, y}, colours[k], 3 - k,
              cv::LINE_AA);
     PutText(image, *labels[k], {box.x + 46, y + 5});
   }
@@ -169,7 +169,7 @@ void DrawTopView(cv::Mat& image, const cv::Rect& area,
   for (const StampedPose& p : aligned_estimate) {
     est_px.push_back(panel.ToPixel(p.p_w_b.x(), p.p_w_b.y()));
   }
-  DrawPolyline(image, gt_px, kGroundTruth, 2);
+  DrawPolyline(image, gt_px, kGroundTruth, 3);
   DrawPolyline(image, est_px, kEstimate, 1);
   cv::circle(image, gt_px.front(), 6, kGroundTruth, 2, cv::LINE_AA);
   PutText(image, "start", gt_px.front() + cv::Point(9, -6));
@@ -244,10 +244,10 @@ void WriteEvaluationPlot(const std::string& path,
   PutText(image, options.title, {20, 28}, title_scale);
   PutText(image, "top view (x-y plane of the ground-truth world)", {90, 52});
   const int left = 100, right = 30;
-  const int top_height = (h - 60) * 2 / 3 - 60;
+  const int top_height = (h - 60) * 2 / 3 - 80;
   DrawTopView(image, cv::Rect(left, 62, w - left - right, top_height),
               ground_truth, aligned_estimate, options);
-  const int bottom_y = 62 + top_height + 60;
+  const int bottom_y = 62 + top_height + 80;  // below the x label
   PutText(image, "position error of each associated pose", {90, bottom_y - 10});
   DrawErrorOverTime(
       image, cv::Rect(left, bottom_y, w - left - right, h - bottom_y - 50),

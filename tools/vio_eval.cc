@@ -158,6 +158,65 @@ std::string BaseName(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+const char* UnitName(vio::RpeUnit unit) {
+  return unit == vio::RpeUnit::kMeters ? "m" : "f";
+}
+
+void PrintInputs(const Args& args, const vio::Trajectory& estimate,
+                 const vio::Trajectory& ground_truth) {
+  std::cout << "estimate " << args.estimate_path << " poses " << estimate.size()
+            << '\n'
+            << "ground truth " << args.ground_truth_path << " poses "
+            << ground_truth.size() << '\n'
+            << "options align " << vio::AlignmentModeName(args.align)
+            << ", max diff " << args.association.max_diff << " s, rpe deltas";
+  for (double d : args.rpe_deltas)
+    std::cout << ' ' << d << UnitName(args.rpe_unit);
+  std::cout << '\n';
+}
+
+void CheckEnoughAssociations(const Args& args, size_t count) {
+  if (count < vio::MinimumPoses(args.align)) {
+    throw std::runtime_error(
+        "too few associations: " + std::to_string(count) +
+        " pose pairs within " + std::to_string(args.association.max_diff) +
+        " s, the " + vio::AlignmentModeName(args.align) + " alignment needs " +
+        std::to_string(vio::MinimumPoses(args.align)) +
+        " (do both files cover the same time? try --max-diff)");
+  }
+}
+
+void PrintRpe(const Args& args, const vio::Trajectory& aligned,
+              const vio::Trajectory& ground_truth) {
+  for (double delta : args.rpe_deltas) {
+    const vio::RelativePoseError rpe =
+        vio::ComputeRpe(aligned, ground_truth, delta, args.rpe_unit);
+    std::ostringstream name;
+    name << "RPE " << delta << UnitName(args.rpe_unit);
+    std::cout << name.str() << " pairs " << rpe.pairs.size() << '\n';
+    if (rpe.pairs.empty()) continue;
+    PrintStats(name.str() + " trans", rpe.translation, "m");
+    PrintStats(name.str() + " rot", rpe.rotation, "deg");
+  }
+}
+
+void Plot(const Args& args, const vio::Trajectory& ground_truth,
+          const vio::Trajectory& aligned,
+          const vio::AbsoluteTrajectoryError& ate) {
+  vio::PlotOptions options;
+  std::ostringstream title;
+  title << "vio_eval: " << BaseName(args.estimate_path) << " vs "
+        << BaseName(args.ground_truth_path) << ", "
+        << vio::AlignmentModeName(args.align) << " alignment, ATE rmse "
+        << ate.translation.rmse << " m";
+  options.title = title.str();
+  options.estimate_label = std::string("estimate (") +
+                           vio::AlignmentModeName(args.align) + " aligned)";
+  vio::WriteEvaluationPlot(args.plot_path, ground_truth, aligned,
+                           ate.translation_m, options);
+  std::cout << "plot " << args.plot_path << '\n';
+}
+
 int Run(const Args& args) {
   if (args.help) {
     std::cout << kUsage;
@@ -167,27 +226,12 @@ int Run(const Args& args) {
   const vio::Trajectory estimate = vio::ReadTrajectory(args.estimate_path);
   const vio::Trajectory ground_truth =
       vio::ReadTrajectory(args.ground_truth_path);
-  const char* unit = args.rpe_unit == vio::RpeUnit::kMeters ? "m" : "f";
-  std::cout << "estimate " << args.estimate_path << " poses " << estimate.size()
-            << '\n'
-            << "ground truth " << args.ground_truth_path << " poses "
-            << ground_truth.size() << '\n'
-            << "options align " << vio::AlignmentModeName(args.align)
-            << ", max diff " << args.association.max_diff << " s, rpe deltas";
-  for (double d : args.rpe_deltas) std::cout << ' ' << d << unit;
-  std::cout << '\n';
+  PrintInputs(args, estimate, ground_truth);
 
   const vio::Association assoc =
       vio::Associate(estimate, ground_truth, args.association);
   std::cout << "associated poses " << assoc.size() << '\n';
-  if (assoc.size() < vio::MinimumPoses(args.align)) {
-    throw std::runtime_error(
-        "too few associations: " + std::to_string(assoc.size()) +
-        " pose pairs within " + std::to_string(args.association.max_diff) +
-        " s, the " + vio::AlignmentModeName(args.align) + " alignment needs " +
-        std::to_string(vio::MinimumPoses(args.align)) +
-        " (do both files cover the same time? try --max-diff)");
-  }
+  CheckEnoughAssociations(args, assoc.size());
   const vio::Alignment alignment =
       vio::Align(assoc.estimate, assoc.ground_truth, args.align);
   PrintAlignment(alignment);
@@ -197,30 +241,8 @@ int Run(const Args& args) {
       vio::ComputeAte(aligned, assoc.ground_truth);
   PrintStats("ATE", ate.translation, "m");
   PrintStats("ATE rot", ate.rotation, "deg");
-  for (double delta : args.rpe_deltas) {
-    const vio::RelativePoseError rpe =
-        vio::ComputeRpe(aligned, assoc.ground_truth, delta, args.rpe_unit);
-    std::ostringstream name;
-    name << "RPE " << delta << unit;
-    std::cout << name.str() << " pairs " << rpe.pairs.size() << '\n';
-    if (rpe.pairs.empty()) continue;
-    PrintStats(name.str() + " trans", rpe.translation, "m");
-    PrintStats(name.str() + " rot", rpe.rotation, "deg");
-  }
-  if (!args.plot_path.empty()) {
-    vio::PlotOptions options;
-    std::ostringstream title;
-    title << "vio_eval: " << BaseName(args.estimate_path) << " vs "
-          << BaseName(args.ground_truth_path) << ", "
-          << vio::AlignmentModeName(args.align) << " alignment, ATE rmse "
-          << ate.translation.rmse << " m";
-    options.title = title.str();
-    options.estimate_label = std::string("estimate (") +
-                             vio::AlignmentModeName(args.align) + " aligned)";
-    vio::WriteEvaluationPlot(args.plot_path, assoc.ground_truth, aligned,
-                             ate.translation_m, options);
-    std::cout << "plot " << args.plot_path << '\n';
-  }
+  PrintRpe(args, aligned, assoc.ground_truth);
+  if (!args.plot_path.empty()) Plot(args, assoc.ground_truth, aligned, ate);
   return 0;
 }
 
