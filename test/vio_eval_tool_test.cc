@@ -55,8 +55,11 @@ double Figure(const std::string& output, const std::string& name) {
   return -1.0;
 }
 
+// A file name of this test's own: ctest runs the tests in parallel.
 std::string Temp(const std::string& name) {
-  return ::testing::TempDir() + "vio_eval_tool_test_" + name;
+  return ::testing::TempDir() + "vio_eval_tool_test_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+         name;
 }
 
 // Ground truth as a EuRoC-style state CSV (200 poses at 20 Hz); the estimate
