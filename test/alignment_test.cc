@@ -99,6 +99,22 @@ TEST(Alignment, TrajectoryAgainstItselfTransformedHasZeroAte) {
   }
 }
 
+TEST(Alignment, PlanarTrajectoriesAlignWithoutAReflection) {
+  // All positions in one plane (a ground robot): the cross-covariance has
+  // rank 2 and Umeyama's sign guard must still return a proper rotation.
+  std::mt19937 rng(10);
+  Trajectory flat = testing::Lissajous(100);
+  for (StampedPose& p : flat) p.p_w_b.z() = 0.0;
+  for (AlignmentMode mode : {AlignmentMode::kSe3, AlignmentMode::kSim3}) {
+    const Similarity S{testing::RandomRotation(rng), {1, -2, 3}, 1.0};
+    const Trajectory est = Transform(S.Inverse(), flat);
+    const Alignment a = Align(est, flat, mode);
+    EXPECT_NEAR(a.R_w_e.determinant(), 1.0, 1e-12) << AlignmentModeName(mode);
+    EXPECT_LT(AngleBetween(a.R_w_e, S.R_w_e), 1e-9) << AlignmentModeName(mode);
+    EXPECT_LT(ComputeAte(a.Apply(est), flat).translation.max, 1e-9);
+  }
+}
+
 TEST(Alignment, PosYawRotatesOnlyAboutGravity) {
   // The true transform also rolls and pitches: posyaw must still return a
   // pure rotation about z (it cannot, and must not, undo roll or pitch).
