@@ -2,7 +2,8 @@
 #define VIO_EVAL_ASSOCIATION_H_
 
 // Pairs the poses of an estimated trajectory with ground-truth poses by
-// timestamp, with the rule of evo's sync.associate_trajectories (evo 1.x):
+// timestamp, with the rule of evo's sync.associate_trajectories (its current
+// single-pass form over matching_time_indices):
 //
 //   - The trajectory with fewer poses is walked in order ("short"); when both
 //     have the same number, the estimate is walked. For the usual case (a
