@@ -3,7 +3,9 @@
 namespace vio {
 
 std::vector<FactorCase> AllFactorCases() {
-  return {};
+  std::vector<FactorCase> cases;
+  cases.push_back(MakeImuFactorCase());
+  return cases;
 }
 
 }  // namespace vio
