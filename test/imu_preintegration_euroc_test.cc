@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "dataset/csv.h"
+#include "dataset/euroc_reader.h"
 #include "dataset/trajectory_io.h"
 #include "factors/imu_factor.h"
 #include "geometry/so3.h"
@@ -23,21 +23,6 @@ namespace {
 const std::string kDir =
     std::string(VIO_SHARED_DIR) + "/data/euroc_MH_05_imu_gt/mav0/";
 constexpr double kGravity = 9.81;
-
-std::vector<ImuSample> ReadEurocImu(const std::string& path) {
-  // t [ns], w (3) [rad/s], a (3) [m/s^2]
-  CsvReader csv(path);
-  std::vector<ImuSample> out;
-  while (csv.Next()) {
-    csv.ExpectAtLeast(7);
-    ImuSample s;
-    s.t_ns = csv.Int64(0);
-    s.gyr = Eigen::Vector3d(csv.Double(1), csv.Double(2), csv.Double(3));
-    s.acc = Eigen::Vector3d(csv.Double(4), csv.Double(5), csv.Double(6));
-    out.push_back(s);
-  }
-  return out;
-}
 
 std::vector<double> Pose(const StampedState& s) {
   return {s.p_w_b.x(), s.p_w_b.y(), s.p_w_b.z(), s.q_w_b.x(),
