@@ -25,8 +25,9 @@
 // lifted to the 7-wide pose blocks with LiftPoseJacobian (pose_manifold.h).
 //
 // References: Forster et al., "On-Manifold Preintegration for Real-Time
-// Visual-Inertial Odometry", T-RO 2017, eqs. (37)-(45); Qin et al.,
-// "VINS-Mono", T-RO 2018, eqs. (16)-(17) and appendix (midpoint scheme).
+// Visual-Inertial Odometry", T-RO 2017, sec. V-C (bias update) and V-D
+// (residuals); Qin et al., "VINS-Mono", T-RO 2018, sec. IV-B (midpoint
+// preintegration) and VI-B (IMU measurement residual).
 
 #include <ceres/sized_cost_function.h>
 

@@ -15,7 +15,7 @@
 //       delta_p(b) ~ delta_p + d_dp_d_ba db_a + d_dp_d_bg db_g
 //       delta_v(b) ~ delta_v + d_dv_d_ba db_a + d_dv_d_bg db_g
 //       delta_q(b) ~ delta_q (x) Exp(d_dq_d_bg db_g)
-//     with db = b - linearisation bias (Forster et al., T-RO 2017, eq. 44).
+//     with db = b - linearisation bias (Forster et al., T-RO 2017, sec. V-C).
 // The samples are kept, so the interval can be re-integrated with new
 // linearisation biases or merged with the next interval.
 //
