@@ -150,7 +150,10 @@ void ImuPreintegration::Integrate() {
   r.sum_dt = 1e-9 * static_cast<double>(r.t1_ns - r.t0_ns);
   r.delta = ImuDelta();
   r.covariance.setZero();
-  // d x / d [b_a, b_g]: the bias columns of the accumulated transition.
+  // d x / d [b_a, b_g]. The biases are part of the error state and constant
+  // through F's identity bias block, so to first order
+  // x_N = F_{N-1} ... F_0 x_0 and the bias Jacobians are the bias columns of
+  // that product, started from d x_0 / d b = [0; I].
   Eigen::Matrix<double, 15, 6> d_x_d_b = Eigen::Matrix<double, 15, 6>::Zero();
   d_x_d_b.bottomRows<6>().setIdentity();
   Matrix15d F;

@@ -1,6 +1,6 @@
 #include "preintegration/midpoint_step.h"
 
-#include <cassert>
+#include <string>
 
 #include "geometry/so3.h"
 
@@ -91,7 +91,11 @@ ImuDelta MidpointStep(const ImuDelta& curr, const ImuSample& s0,
                       const ImuSample& s1, const Eigen::Vector3d& b_a,
                       const Eigen::Vector3d& b_g, Matrix15d* d_next_d_curr,
                       Matrix15x18d* d_next_d_noise) {
-  assert(s1.t_ns > s0.t_ns);
+  if (s1.t_ns <= s0.t_ns) {
+    throw ImuError("midpoint step from t = " + std::to_string(s0.t_ns) +
+                   " ns to t = " + std::to_string(s1.t_ns) +
+                   " ns: the second sample must come later");
+  }
   const double dt = 1e-9 * static_cast<double>(s1.t_ns - s0.t_ns);
   const Eigen::Vector3d phi = (0.5 * (s0.gyr + s1.gyr) - b_g) * dt;
   const Eigen::Matrix3d R_k = curr.q.toRotationMatrix();

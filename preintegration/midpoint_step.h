@@ -63,8 +63,8 @@ struct ImuDelta {
   Eigen::Vector3d v = Eigen::Vector3d::Zero();            // delta_v [m/s]
 };
 
-// Integrates from sample s0 to sample s1 (s1.t_ns > s0.t_ns, asserted) with
-// constant biases b_a [m/s^2] and b_g [rad/s]. Optionally returns the
+// Integrates from sample s0 to sample s1 (ImuError unless s1.t_ns > s0.t_ns)
+// with constant biases b_a [m/s^2] and b_g [rad/s]. Optionally returns the
 // Jacobians of the step: d_next_d_curr (F, 15 x 15) and d_next_d_noise
 // (G, 15 x 18), evaluated at the given state and biases.
 ImuDelta MidpointStep(const ImuDelta& curr, const ImuSample& s0,

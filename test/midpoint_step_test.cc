@@ -174,6 +174,20 @@ TEST(MidpointStep, RotatesByTheMeanRateAndIntegratesTheMeanAcceleration) {
   EXPECT_TRUE(next.p.isApprox(Eigen::Vector3d(0.0, 0.0, 0.01), 1e-15));
 }
 
+TEST(MidpointStep, RejectsSamplesOutOfOrder) {
+  ImuSample s0, s1;
+  s0.t_ns = s1.t_ns = 5;
+  try {
+    MidpointStep(ImuDelta(), s0, s1, Eigen::Vector3d::Zero(),
+                 Eigen::Vector3d::Zero());
+    ADD_FAILURE() << "no ImuError";
+  } catch (const ImuError& e) {
+    EXPECT_STREQ(e.what(),
+                 "midpoint step from t = 5 ns to t = 5 ns: the second sample "
+                 "must come later");
+  }
+}
+
 TEST(StepNoiseVariances, GiveTheMidpointAverageTheContinuousTimeVariance) {
   ImuNoise noise;
   const double dt = 0.005;
