@@ -2,6 +2,10 @@
 
 namespace vio {
 
-std::vector<FactorCase> AllFactorCases() { return {}; }
+std::vector<FactorCase> AllFactorCases() {
+  std::vector<FactorCase> cases;
+  cases.push_back(MakeImuFactorCase());
+  return cases;
+}
 
 }  // namespace vio
