@@ -8,11 +8,26 @@
 #include <vector>
 
 #include "factors/check/jacobian_check.h"
+#include "factors/check/visual_scene.h"
 
 namespace vio {
 
 // All cases, in a fixed order (the order of the jacobian_check table).
 std::vector<FactorCase> AllFactorCases();
+
+// Visual factors (visual_factor_cases.cc), on scenes from
+// factors/check/visual_scene.h. With kMixed (what AllFactorCases uses) half
+// the states are realistic and half sit close to a degenerate case (a point
+// nearly at infinity, a negative inverse depth, a point centimetres in front
+// of the target camera); a fixed geometry draws only that kind.
+FactorCase MakeReprojectionCase(
+    VisualGeometry geometry = VisualGeometry::kMixed);
+FactorCase MakeTimedReprojectionCase(
+    VisualGeometry geometry = VisualGeometry::kMixed);
+FactorCase MakeStereoReprojectionCase(
+    VisualGeometry geometry = VisualGeometry::kMixed);
+FactorCase MakeStereoTwoFrameReprojectionCase(
+    VisualGeometry geometry = VisualGeometry::kMixed);
 
 }  // namespace vio
 
