@@ -44,17 +44,6 @@ Eigen::Isometry3d Make(const Eigen::Quaterniond& q, const Eigen::Vector3d& t) {
   return T;
 }
 
-Block7 ToBlock(const Eigen::Isometry3d& T) {
-  Block7 x;
-  x.head<3>() = T.translation();
-  x.tail<4>() = Eigen::Quaterniond(T.linear()).normalized().coeffs();
-  return x;
-}
-
-Eigen::Isometry3d FromBlock(const Block7& x) {
-  return Make(Eigen::Quaterniond(Eigen::Vector4d(x.tail<4>())), x.head<3>());
-}
-
 // EuRoC's rig: both cameras look along body z, image x along -body y;
 // cam0 at (-0.022, -0.065, 0.010) m, cam1 11 cm to its side. Perturbed by up
 // to 2 degrees and 1 cm so that no Jacobian is checked only at a special
@@ -142,16 +131,52 @@ void AddTiming(std::mt19937& rng, VisualScene* s) {
 
 }  // namespace
 
+Block7 BlockFromIsometry(const Eigen::Isometry3d& T) {
+  Block7 x;
+  x.head<3>() = T.translation();
+  x.tail<4>() = Eigen::Quaterniond(T.linear()).normalized().coeffs();
+  return x;
+}
+
+Eigen::Isometry3d IsometryFromBlock(const Block7& x) {
+  return Make(Eigen::Quaterniond(Eigen::Vector4d(x.tail<4>())), x.head<3>());
+}
+
+Eigen::Isometry3d TargetCameraPose(const VisualScene& s, VisualTarget target) {
+  switch (target) {
+    case VisualTarget::kMonoOtherFrame:
+      return IsometryFromBlock(s.pose_j) * IsometryFromBlock(s.extrinsic0);
+    case VisualTarget::kStereoSameFrame:
+      return IsometryFromBlock(s.pose_i) * IsometryFromBlock(s.extrinsic1);
+    case VisualTarget::kStereoOtherFrame:
+      break;
+  }
+  return IsometryFromBlock(s.pose_j) * IsometryFromBlock(s.extrinsic1);
+}
+
+void SetTargetCameraPose(const Eigen::Isometry3d& T_w_c, VisualTarget target,
+                         VisualScene* s) {
+  switch (target) {
+    case VisualTarget::kMonoOtherFrame:
+      s->pose_j =
+          BlockFromIsometry(T_w_c * IsometryFromBlock(s->extrinsic0).inverse());
+      return;
+    case VisualTarget::kStereoSameFrame:
+      s->extrinsic1 =
+          BlockFromIsometry(IsometryFromBlock(s->pose_i).inverse() * T_w_c);
+      return;
+    case VisualTarget::kStereoOtherFrame:
+      s->pose_j =
+          BlockFromIsometry(T_w_c * IsometryFromBlock(s->extrinsic1).inverse());
+      return;
+  }
+}
+
 Eigen::Vector3d TargetPoint(const VisualScene& s, VisualTarget target) {
   const Eigen::Isometry3d T_w_ci =
-      FromBlock(s.pose_i) * FromBlock(s.extrinsic0);
-  const Eigen::Isometry3d T_b_c = target == VisualTarget::kMonoOtherFrame
-                                      ? FromBlock(s.extrinsic0)
-                                      : FromBlock(s.extrinsic1);
-  const Eigen::Isometry3d T_w_bj = target == VisualTarget::kStereoSameFrame
-                                       ? FromBlock(s.pose_i)
-                                       : FromBlock(s.pose_j);
-  const Eigen::Isometry3d T_cj_ci = (T_w_bj * T_b_c).inverse() * T_w_ci;
+      IsometryFromBlock(s.pose_i) * IsometryFromBlock(s.extrinsic0);
+  const Eigen::Isometry3d T_cj_ci =
+      TargetCameraPose(s, target).inverse() * T_w_ci;
   // The landmark as a homogeneous 4-vector (f, rho) in the anchor camera, f
   // the anchor bearing at the pose's time.
   const Eigen::Vector2d xy_i =
@@ -173,9 +198,9 @@ VisualScene SampleVisualScene(std::mt19937& rng, VisualGeometry geometry,
         EurocLikeExtrinsic(rng, Eigen::Vector3d(-0.022, -0.065, 0.010));
     const Eigen::Isometry3d T_b_c1 =
         EurocLikeExtrinsic(rng, Eigen::Vector3d(-0.020, 0.045, 0.008));
-    s.pose_i = ToBlock(T_w_bi);
-    s.extrinsic0 = ToBlock(T_b_c0);
-    s.extrinsic1 = ToBlock(T_b_c1);
+    s.pose_i = BlockFromIsometry(T_w_bi);
+    s.extrinsic0 = BlockFromIsometry(T_b_c0);
+    s.extrinsic1 = BlockFromIsometry(T_b_c1);
     s.rho = SampleInverseDepth(rng, geometry, target);
     s.obs_i.xy =
         Eigen::Vector2d(Uniform(rng, -0.5, 0.5), Uniform(rng, -0.5, 0.5));
@@ -187,10 +212,8 @@ VisualScene SampleVisualScene(std::mt19937& rng, VisualGeometry geometry,
       // the ray serves to place the target camera.
       const double depth = s.rho > 1e-3 ? 1.0 / s.rho : 1e3;
       const Eigen::Vector3d p_w_l = T_w_ca * (depth * s.obs_i.xy.homogeneous());
-      const Eigen::Isometry3d T_b_c =
-          target == VisualTarget::kMonoOtherFrame ? T_b_c0 : T_b_c1;
-      s.pose_j = ToBlock(SampleTargetCamera(rng, geometry, T_w_ca, p_w_l) *
-                         T_b_c.inverse());
+      SetTargetCameraPose(SampleTargetCamera(rng, geometry, T_w_ca, p_w_l),
+                          target, &s);
     }
     const Eigen::Vector3d h = TargetPoint(s, target);
     if (!Acceptable(geometry, h, s.rho)) continue;

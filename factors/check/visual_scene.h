@@ -9,6 +9,7 @@
 // jacobian_check tool), the factor tests, the bundle test and the benchmark.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <random>
 
 #include "factors/inverse_depth_chain.h"
@@ -57,6 +58,18 @@ VisualScene SampleVisualScene(std::mt19937& rng, VisualGeometry geometry,
 // camera, at the scene's t_d: h.xy / h.z is the noise-free target
 // observation, h.z the projective depth.
 Eigen::Vector3d TargetPoint(const VisualScene& scene, VisualTarget target);
+
+// Conversions between a 7-block [t, q(x, y, z, w)] and an isometry.
+Eigen::Isometry3d IsometryFromBlock(const Block7& x);
+Block7 BlockFromIsometry(const Eigen::Isometry3d& T);
+
+// The world pose of the scene's target camera, T_w_c (the anchor camera is
+// T_w_bi T_b_c0), and a way to move it: in one keyframe by changing T_b_c1,
+// else by changing pose_j.
+Eigen::Isometry3d TargetCameraPose(const VisualScene& scene,
+                                   VisualTarget target);
+void SetTargetCameraPose(const Eigen::Isometry3d& T_w_c, VisualTarget target,
+                         VisualScene* scene);
 
 }  // namespace vio
 
