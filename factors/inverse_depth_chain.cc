@@ -113,15 +113,46 @@ ProjectedResidual ProjectResidual(const Eigen::Vector3d& h_c,
   return p;
 }
 
-void WriteRigidJacobian(const ProjectedResidual& p, const Matrix36& d_h_d_block,
-                        const double* block, double* jacobian) {
-  if (!p.active) {
-    Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>>(jacobian)
-        .setZero();
-    return;
+Matrix36 InverseDepthChain::d_h_d_rigid(ChainBlock block) const {
+  switch (block) {
+    case ChainBlock::kPoseI:
+      return d_h_d_pose_i();
+    case ChainBlock::kPoseJ:
+      return d_h_d_pose_j();
+    case ChainBlock::kAnchorExtrinsic:
+      return d_h_d_anchor_extrinsic();
+    case ChainBlock::kTargetExtrinsic:
+      return d_h_d_target_extrinsic();
+    case ChainBlock::kSharedExtrinsic:
+    case ChainBlock::kInverseDepth:
+      break;
   }
-  const Matrix26 d_r_d_block = p.d_r_d_h * d_h_d_block;
-  LiftPoseJacobian(d_r_d_block, block, jacobian);
+  return d_h_d_anchor_extrinsic() + d_h_d_target_extrinsic();
+}
+
+void WriteChainJacobians(const ProjectedResidual& p,
+                         const InverseDepthChain& chain,
+                         std::initializer_list<ChainBlock> blocks,
+                         double const* const* parameters, double** jacobians) {
+  int k = 0;
+  for (const ChainBlock block : blocks) {
+    double* jacobian = jacobians[k];
+    const double* x = parameters[k];
+    ++k;
+    if (jacobian == nullptr) continue;
+    // r = pi(h_c): d r / d block = d_r_d_h * d_h_d_block (d_r_d_h is zero
+    // when the residual is inactive).
+    if (block == ChainBlock::kInverseDepth) {
+      Eigen::Map<Eigen::Vector2d> d_r_d_rho(jacobian);
+      d_r_d_rho = p.d_r_d_h * chain.d_h_d_rho();
+    } else if (!p.active) {
+      Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>>(jacobian)
+          .setZero();
+    } else {
+      const Matrix26 d_r_d_block = p.d_r_d_h * chain.d_h_d_rigid(block);
+      LiftPoseJacobian(d_r_d_block, x, jacobian);
+    }
+  }
 }
 
 }  // namespace vio

@@ -33,6 +33,7 @@
 // with a landmark whose rho ends up <= 0 is the estimator's business.
 
 #include <Eigen/Core>
+#include <initializer_list>
 
 namespace vio {
 
@@ -43,6 +44,16 @@ constexpr double kMinProjectiveDepth = 1e-3;
 using Matrix23 = Eigen::Matrix<double, 2, 3>;
 using Matrix26 = Eigen::Matrix<double, 2, 6>;
 using Matrix36 = Eigen::Matrix<double, 3, 6>;
+
+// The role a factor's parameter block plays in the chain.
+enum class ChainBlock {
+  kPoseI,            // T_w_bi (7)
+  kPoseJ,            // T_w_bj (7)
+  kAnchorExtrinsic,  // T_b_a (7)
+  kTargetExtrinsic,  // T_b_c (7)
+  kSharedExtrinsic,  // one camera is anchor and target: T_b_a = T_b_c (7)
+  kInverseDepth,     // rho (1)
+};
 
 // A rigid transform read from a 7-block [t (3), q (x, y, z, w)]: maps points
 // from its second frame to its first (T_w_b: p_w = R p_b + t).
@@ -77,6 +88,9 @@ class InverseDepthChain {
   Matrix36 d_h_d_target_extrinsic() const;
   // d h_c / d rho.
   Eigen::Vector3d d_h_d_rho() const;
+  // d h_c / d [dt, dtheta] of a rigid block by its role; a shared extrinsic
+  // enters the chain twice, so its derivative is the sum of both paths.
+  Matrix36 d_h_d_rigid(ChainBlock block) const;
   // d h_c / d f_a (the anchor bearing), used for the time offset.
   Eigen::Matrix3d d_h_d_bearing() const { return d_hc_d_hbi_ * R_b_a_; }
 
@@ -104,11 +118,14 @@ ProjectedResidual ProjectResidual(const Eigen::Vector3d& h_c,
                                   const Eigen::Vector2d& xy_c,
                                   double sqrt_info);
 
-// Lifts the tangent Jacobian of a rigid block, d_r_d_h * d_h_d_block (2 x 6),
-// into the ambient 2 x 7 row-major array Ceres expects (zero when the
-// residual is inactive).
-void WriteRigidJacobian(const ProjectedResidual& p, const Matrix36& d_h_d_block,
-                        const double* block, double* jacobian);
+// Writes d r / d block = d_r_d_h * d_h_d_block for each requested block.
+// blocks[k] is the role of parameter block k; rigid Jacobians are lifted to
+// the ambient 2 x 7 row-major layout Ceres expects (PoseManifold), rho's is
+// 2 x 1. All are zero when the residual is inactive.
+void WriteChainJacobians(const ProjectedResidual& p,
+                         const InverseDepthChain& chain,
+                         std::initializer_list<ChainBlock> blocks,
+                         double const* const* parameters, double** jacobians);
 
 }  // namespace vio
 

@@ -19,28 +19,14 @@ bool ReprojectionFactor::Evaluate(double const* const* parameters,
   const ProjectedResidual p = ProjectResidual(chain.h_c(), xy_j_, sqrt_info_);
   Eigen::Map<Eigen::Vector2d> r(residuals);
   r = p.r;
-  if (jacobians == nullptr) return true;
-
-  // r = pi(h_c) and h_c depends on each block through the shared chain:
-  // d r / d block = d_r_d_h * d_h_d_block.
-  if (jacobians[kPoseI] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_pose_i(), parameters[kPoseI],
-                       jacobians[kPoseI]);
-  }
-  if (jacobians[kPoseJ] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_pose_j(), parameters[kPoseJ],
-                       jacobians[kPoseJ]);
-  }
-  if (jacobians[kExtrinsic] != nullptr) {
+  if (jacobians != nullptr) {
     // One camera is both the anchor and the target: T_b_c enters the chain
-    // twice, and its Jacobian is the sum of both paths.
-    WriteRigidJacobian(
-        p, chain.d_h_d_anchor_extrinsic() + chain.d_h_d_target_extrinsic(),
-        parameters[kExtrinsic], jacobians[kExtrinsic]);
-  }
-  if (jacobians[kInverseDepth] != nullptr) {
-    Eigen::Map<Eigen::Vector2d> d_r_d_rho(jacobians[kInverseDepth]);
-    d_r_d_rho = p.d_r_d_h * chain.d_h_d_rho();
+    // twice (kSharedExtrinsic sums both paths).
+    WriteChainJacobians(
+        p, chain,
+        {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kSharedExtrinsic,
+         ChainBlock::kInverseDepth},
+        parameters, jacobians);
   }
   return true;
 }

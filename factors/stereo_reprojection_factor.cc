@@ -20,20 +20,13 @@ bool StereoReprojectionFactor::Evaluate(double const* const* parameters,
   const ProjectedResidual p = ProjectResidual(chain.h_c(), xy_c1_, sqrt_info_);
   Eigen::Map<Eigen::Vector2d> r(residuals);
   r = p.r;
-  if (jacobians == nullptr) return true;
-
-  // cam0 is the anchor and cam1 the target of the shared chain.
-  if (jacobians[kExtrinsic0] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_anchor_extrinsic(),
-                       parameters[kExtrinsic0], jacobians[kExtrinsic0]);
-  }
-  if (jacobians[kExtrinsic1] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_target_extrinsic(),
-                       parameters[kExtrinsic1], jacobians[kExtrinsic1]);
-  }
-  if (jacobians[kInverseDepth] != nullptr) {
-    Eigen::Map<Eigen::Vector2d> d_r_d_rho(jacobians[kInverseDepth]);
-    d_r_d_rho = p.d_r_d_h * chain.d_h_d_rho();
+  if (jacobians != nullptr) {
+    // cam0 is the anchor and cam1 the target of the shared chain.
+    WriteChainJacobians(
+        p, chain,
+        {ChainBlock::kAnchorExtrinsic, ChainBlock::kTargetExtrinsic,
+         ChainBlock::kInverseDepth},
+        parameters, jacobians);
   }
   return true;
 }
@@ -53,29 +46,13 @@ bool StereoTwoFrameReprojectionFactor::Evaluate(double const* const* parameters,
   const ProjectedResidual p = ProjectResidual(chain.h_c(), xy_j_, sqrt_info_);
   Eigen::Map<Eigen::Vector2d> r(residuals);
   r = p.r;
-  if (jacobians == nullptr) return true;
-
-  // d r / d block = d_r_d_h * d_h_d_block along the shared chain, with cam0
-  // as the anchor and cam1 as the target.
-  if (jacobians[kPoseI] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_pose_i(), parameters[kPoseI],
-                       jacobians[kPoseI]);
-  }
-  if (jacobians[kPoseJ] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_pose_j(), parameters[kPoseJ],
-                       jacobians[kPoseJ]);
-  }
-  if (jacobians[kExtrinsic0] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_anchor_extrinsic(),
-                       parameters[kExtrinsic0], jacobians[kExtrinsic0]);
-  }
-  if (jacobians[kExtrinsic1] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_target_extrinsic(),
-                       parameters[kExtrinsic1], jacobians[kExtrinsic1]);
-  }
-  if (jacobians[kInverseDepth] != nullptr) {
-    Eigen::Map<Eigen::Vector2d> d_r_d_rho(jacobians[kInverseDepth]);
-    d_r_d_rho = p.d_r_d_h * chain.d_h_d_rho();
+  if (jacobians != nullptr) {
+    // cam0 of keyframe i is the anchor, cam1 of keyframe j the target.
+    WriteChainJacobians(
+        p, chain,
+        {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kAnchorExtrinsic,
+         ChainBlock::kTargetExtrinsic, ChainBlock::kInverseDepth},
+        parameters, jacobians);
   }
   return true;
 }

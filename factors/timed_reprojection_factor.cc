@@ -34,23 +34,10 @@ bool TimedReprojectionFactor::Evaluate(double const* const* parameters,
   if (jacobians == nullptr) return true;
 
   // Poses, extrinsic and rho: as in ReprojectionFactor, on the shifted f_i.
-  if (jacobians[kPoseI] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_pose_i(), parameters[kPoseI],
-                       jacobians[kPoseI]);
-  }
-  if (jacobians[kPoseJ] != nullptr) {
-    WriteRigidJacobian(p, chain.d_h_d_pose_j(), parameters[kPoseJ],
-                       jacobians[kPoseJ]);
-  }
-  if (jacobians[kExtrinsic] != nullptr) {
-    WriteRigidJacobian(
-        p, chain.d_h_d_anchor_extrinsic() + chain.d_h_d_target_extrinsic(),
-        parameters[kExtrinsic], jacobians[kExtrinsic]);
-  }
-  if (jacobians[kInverseDepth] != nullptr) {
-    Eigen::Map<Eigen::Vector2d> d_r_d_rho(jacobians[kInverseDepth]);
-    d_r_d_rho = p.d_r_d_h * chain.d_h_d_rho();
-  }
+  WriteChainJacobians(p, chain,
+                      {ChainBlock::kPoseI, ChainBlock::kPoseJ,
+                       ChainBlock::kSharedExtrinsic, ChainBlock::kInverseDepth},
+                      parameters, jacobians);
   if (jacobians[kTimeOffset] != nullptr) {
     // t_d moves both observations: d f_i / d t_d = (-v_i, 0), and
     // d xy_j(t_d) / d t_d = -v_j enters r with a minus sign:

@@ -187,7 +187,7 @@ TEST_P(VisualFactorTest, ZeroTinyAndNegativeInverseDepthsAreFinite) {
   }
 }
 
-TEST_P(VisualFactorTest, PointAtInfinityIsTheRotationOnlyLimit) {
+TEST_P(VisualFactorTest, ResidualIsContinuousAtInfinity) {
   // rho -> 0 is the limit of ever farther points, not a special case: the
   // residual at rho = 0 is the limit of the residuals at rho = 1e-k.
   std::mt19937 rng(15);
