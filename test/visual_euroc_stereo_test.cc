@@ -1,30 +1,29 @@
 // The stereo factor on real data: the first stereo pair of EuRoC V1_01 with
 // the calibration from its sensor.yaml files. Corners found in cam0 and
-// tracked into cam1 (OpenCV stands in for the frontend, which is not built
-// yet) are explained by one inverse depth each: with T_BS read as T_b_c
-// (p_b = R p_c + t), the remaining reprojection error must be at the level of
-// the tracker's noise, and reading the calibration the other way round must
-// not explain them.
+// tracked into cam1 (OpenCV's KLT stands in for the frontend's tracker, which
+// is not built yet; the calibration comes through config/euroc_sensor.h and
+// geometry/camera_model.h) are explained by one inverse depth each: with T_BS
+// read as T_b_c (p_b = R p_c + t), the remaining reprojection error must be at
+// the level of the tracker's noise, and reading the calibration the other way
+// round must not explain them.
 
 #include <ceres/ceres.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <fstream>
-#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "config/yaml_reader.h"
+#include "config/euroc_sensor.h"
 #include "factors/check/visual_scene.h"
 #include "factors/pose_manifold.h"
 #include "factors/stereo_reprojection_factor.h"
+#include "geometry/camera_model.h"
 
 namespace vio {
 namespace {
@@ -33,37 +32,23 @@ const std::string kMav0 =
     std::string(VIO_SHARED_DIR) + "/data/euroc_V1_01_first5s/mav0/";
 const std::string kFirstImage = "1403715273262142976.png";
 
+// A camera as the project reads it: config/euroc_sensor.h's sensor.yaml
+// reader and geometry's camera model.
 struct Camera {
-  Block7 T_b_c;  // from T_BS
-  cv::Mat K, distortion;
-  double focal_px = 0.0;  // fu
+  CameraModel model;
+  Block7 T_b_c;
 };
 
 Camera LoadCamera(const std::string& name) {
-  // EuRoC's files start with OpenCV's "%YAML:1.0", which yaml-cpp rejects.
-  const std::string path = kMav0 + name + "/sensor.yaml";
-  std::ifstream in(path);
-  std::ostringstream text;
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind('%', 0) != 0) text << line << "\n";
-  }
-  const YamlNode root = YamlNode::LoadString(text.str(), path);
-  const std::vector<double> T = root.Child("T_BS").GetVector("data", 16);
-  const std::vector<double> k = root.GetVector("intrinsics", 4);
-  const std::vector<double> d = root.GetVector("distortion_coefficients", 4);
-  Eigen::Isometry3d T_b_c;
-  T_b_c.matrix() =
-      Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(T.data());
-  Camera c;
-  c.T_b_c = BlockFromIsometry(T_b_c);
-  c.K = (cv::Mat_<double>(3, 3) << k[0], 0, k[2], 0, k[1], k[3], 0, 0, 1);
-  c.distortion = (cv::Mat_<double>(1, 4) << d[0], d[1], d[2], d[3]);
-  c.focal_px = k[0];
-  return c;
+  const CameraCalibration calibration =
+      ReadEurocCameraYaml(kMav0 + name + "/sensor.yaml");
+  Block7 T_b_c;
+  T_b_c << calibration.t_b_c, calibration.q_b_c.coeffs();
+  return {CameraModel(calibration), T_b_c};
 }
 
 struct StereoMatches {
-  std::vector<cv::Point2f> xy0, xy1;  // normalised coordinates
+  std::vector<Eigen::Vector2d> xy0, xy1;  // normalised coordinates
 };
 
 // Corners of cam0 tracked into cam1 with pyramidal LK, kept when tracking
@@ -81,17 +66,16 @@ StereoMatches MatchFirstPair(const Camera& cam0, const Camera& cam1) {
   std::vector<float> err;
   cv::calcOpticalFlowPyrLK(img0, img1, uv0, uv1, ok, err);
   cv::calcOpticalFlowPyrLK(img1, img0, uv1, back, ok_back, err);
-  std::vector<cv::Point2f> good0, good1;
+  StereoMatches m;
   for (size_t i = 0; i < uv0.size(); ++i) {
-    if (ok[i] && ok_back[i] && cv::norm(back[i] - uv0[i]) < 0.5) {
-      good0.push_back(uv0[i]);
-      good1.push_back(uv1[i]);
+    Eigen::Vector2d xy0, xy1;
+    if (ok[i] && ok_back[i] && cv::norm(back[i] - uv0[i]) < 0.5 &&
+        cam0.model.PixelToNormalized({uv0[i].x, uv0[i].y}, &xy0) &&
+        cam1.model.PixelToNormalized({uv1[i].x, uv1[i].y}, &xy1)) {
+      m.xy0.push_back(xy0);
+      m.xy1.push_back(xy1);
     }
   }
-  StereoMatches m;
-  if (good0.empty()) return m;
-  cv::undistortPoints(good0, m.xy0, cam0.K, cam0.distortion);
-  cv::undistortPoints(good1, m.xy1, cam1.K, cam1.distortion);
   return m;
 }
 
@@ -109,9 +93,7 @@ void FitDepths(const StereoMatches& m, Block7 T_b_c0, Block7 T_b_c1,
   rho->assign(m.xy0.size(), 0.2);  // start every point at 5 m
   for (size_t i = 0; i < m.xy0.size(); ++i) {
     problem.AddResidualBlock(
-        new StereoReprojectionFactor(Eigen::Vector2d(m.xy0[i].x, m.xy0[i].y),
-                                     Eigen::Vector2d(m.xy1[i].x, m.xy1[i].y),
-                                     focal1_px / 1.0),
+        new StereoReprojectionFactor(m.xy0[i], m.xy1[i], focal1_px / 1.0),
         nullptr, T_b_c0.data(), T_b_c1.data(), &(*rho)[i]);
   }
   for (Block7* T : {&T_b_c0, &T_b_c1}) {
@@ -144,7 +126,7 @@ TEST(VisualEurocStereo, SensorYamlExtrinsicsExplainRealStereoMatches) {
   ASSERT_GE(m.xy0.size(), 50u);
 
   std::vector<double> errors, rho;
-  FitDepths(m, cam0.T_b_c, cam1.T_b_c, cam1.focal_px, &errors, &rho);
+  FitDepths(m, cam0.T_b_c, cam1.T_b_c, cam1.model.focal(), &errors, &rho);
   // Vertical disparity left after fitting depth: tracker noise only.
   EXPECT_LT(Median(errors), 0.5);
   // The room of V1_01 is a few metres across.
@@ -154,7 +136,7 @@ TEST(VisualEurocStereo, SensorYamlExtrinsicsExplainRealStereoMatches) {
 
   // T_BS read the wrong way round (as T_c_b) leaves pixels of error.
   std::vector<double> wrong_errors, wrong_rho;
-  FitDepths(m, Inverse(cam0.T_b_c), Inverse(cam1.T_b_c), cam1.focal_px,
+  FitDepths(m, Inverse(cam0.T_b_c), Inverse(cam1.T_b_c), cam1.model.focal(),
             &wrong_errors, &wrong_rho);
   EXPECT_GT(Median(wrong_errors), 5.0 * Median(errors));
 }
