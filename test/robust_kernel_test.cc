@@ -20,13 +20,13 @@ double Weight(const ceres::LossFunction& loss, double s) {
   return rho[1];
 }
 
-TEST(RobustKernel, NoneIsPlainSquaredLoss) {
+TEST(RobustKernelOptions, NoneIsPlainSquaredLoss) {
   RobustKernelOptions options;
   options.type = RobustKernelType::kNone;
   EXPECT_EQ(MakeLossFunction(options), nullptr);
 }
 
-TEST(RobustKernel, HuberScaleIsInUnitsOfSigma) {
+TEST(RobustKernelOptions, HuberScaleIsInUnitsOfSigma) {
   // Residuals are whitened, so the kernel must start to down-weight exactly
   // at |r| = scale sigma: weight 1 inside, scale / |r| outside.
   RobustKernelOptions options;  // Huber 1.345 by default
@@ -38,7 +38,7 @@ TEST(RobustKernel, HuberScaleIsInUnitsOfSigma) {
   EXPECT_NEAR(Weight(*loss, 9.0), c / 3.0, 1e-12);
 }
 
-TEST(RobustKernel, CauchyHalvesTheWeightAtItsScale) {
+TEST(RobustKernelOptions, CauchyHalvesTheWeightAtItsScale) {
   RobustKernelOptions options;
   options.type = RobustKernelType::kCauchy;
   options.scale = DefaultRobustKernelScale(options.type);
@@ -49,7 +49,7 @@ TEST(RobustKernel, CauchyHalvesTheWeightAtItsScale) {
   EXPECT_NEAR(Weight(*loss, options.scale * options.scale), 0.5, 1e-12);
 }
 
-TEST(RobustKernel, ValidateRejectsNonPositiveOrNonFiniteScale) {
+TEST(RobustKernelOptions, ValidateRejectsNonPositiveOrNonFiniteScale) {
   for (double scale : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
                        std::numeric_limits<double>::infinity()}) {
     RobustKernelOptions options;
@@ -67,7 +67,7 @@ TEST(RobustKernel, ValidateRejectsNonPositiveOrNonFiniteScale) {
   EXPECT_TRUE(none.Validate(&message));
 }
 
-TEST(RobustKernel, NamesRoundTripAndUnknownNamesAreRejected) {
+TEST(RobustKernelOptions, NamesRoundTripAndUnknownNamesAreRejected) {
   for (RobustKernelType t : {RobustKernelType::kNone, RobustKernelType::kHuber,
                              RobustKernelType::kCauchy}) {
     RobustKernelType parsed = RobustKernelType::kNone;
