@@ -3,7 +3,9 @@
 namespace vio {
 
 std::vector<FactorCase> AllFactorCases() {
-  return {};
+  std::vector<FactorCase> cases;
+  cases.push_back(MarginalizationPriorCase());
+  return cases;
 }
 
 }  // namespace vio

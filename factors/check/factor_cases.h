@@ -14,6 +14,9 @@ namespace vio {
 // All cases, in a fixed order (the order of the jacobian_check table).
 std::vector<FactorCase> AllFactorCases();
 
+// The marginalisation prior (factors/marginalization_prior.h).
+FactorCase MarginalizationPriorCase();
+
 }  // namespace vio
 
 #endif  // VIO_FACTORS_CHECK_FACTOR_CASES_H_
