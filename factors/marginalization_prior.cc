@@ -118,9 +118,8 @@ void MarginalizationPrior::BlockJacobian(int b, const double* x,
   d_r_d_delta.leftCols<3>() =
       jacobian_.middleCols<3>(offset + kPoseTranslation);
   const Eigen::Vector3d phi = dx.segment<3>(offset + kPoseRotation);
-  d_r_d_delta.rightCols<3>() =
-      jacobian_.middleCols<3>(offset + kPoseRotation) *
-      RightJacobianInverse(phi);
+  d_r_d_delta.rightCols<3>() = jacobian_.middleCols<3>(offset + kPoseRotation) *
+                               RightJacobianInverse(phi);
   out = d_r_d_delta * PoseManifold::MinusJacobianAt(x);
 }
 

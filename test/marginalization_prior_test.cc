@@ -87,8 +87,8 @@ TEST(MarginalizationPrior, AtLinearisationPointGivesR0AndJ) {
   EXPECT_TRUE(r.isApprox(prior->residual0(), 1e-14));
 
   // Pose 0's tangent Jacobian = ambient Jacobian * PlusJacobian at x0.
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
-                                 Eigen::RowMajor>;
+  using RowMajor =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   std::vector<RowMajor> ambient;
   std::vector<double*> jacobians;
   for (const PriorBlock& b : prior->blocks()) {

@@ -23,12 +23,12 @@ constexpr int kSpeedBiasSize = 9;
 
 // Standard deviations of a typical window prior, per tangent coordinate of a
 // block: they set the scale of the random information matrix.
-constexpr double kSigmaPosition = 0.05;       // [m]
-constexpr double kSigmaRotation = 0.01;       // [rad]
-constexpr double kSigmaVelocity = 0.05;       // [m/s]
-constexpr double kSigmaAccBias = 0.02;        // [m/s^2]
-constexpr double kSigmaGyroBias = 0.002;      // [rad/s]
-constexpr double kSigmaInverseDepth = 0.05;   // [1/m]
+constexpr double kSigmaPosition = 0.05;      // [m]
+constexpr double kSigmaRotation = 0.01;      // [rad]
+constexpr double kSigmaVelocity = 0.05;      // [m/s]
+constexpr double kSigmaAccBias = 0.02;       // [m/s^2]
+constexpr double kSigmaGyroBias = 0.002;     // [rad/s]
+constexpr double kSigmaInverseDepth = 0.05;  // [1/m]
 
 Eigen::Vector3d RandomVector(std::mt19937& rng, double sigma) {
   std::normal_distribution<double> n(0.0, sigma);
