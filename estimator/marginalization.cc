@@ -31,12 +31,14 @@ MarginalizationResult Failure(std::string message) {
 
 // Checks the problem's structure and values; returns "" when it is valid.
 std::string CheckProblem(const MarginalizationProblem& problem) {
-  std::set<const double*> listed;
+  std::map<const double*, int> listed;  // values -> ambient size
   for (size_t i = 0; i < problem.parameter_blocks.size(); ++i) {
     const MarginalizationParameterBlock& p = problem.parameter_blocks[i];
     const std::string name = "parameter block " + std::to_string(i);
     if (p.values == nullptr || p.size < 1) return name + " is empty";
-    if (!listed.insert(p.values).second) return name + " is listed twice";
+    if (!listed.emplace(p.values, p.size).second) {
+      return name + " is listed twice";
+    }
     if (p.manifold && p.manifold->AmbientSize() != p.size) {
       return name + " has a manifold of another ambient size";
     }
@@ -54,8 +56,14 @@ std::string CheckProblem(const MarginalizationProblem& problem) {
     if (r.cost->parameter_block_sizes().size() != r.parameter_blocks.size()) {
       return name + " has the wrong number of parameter blocks";
     }
-    for (const double* p : r.parameter_blocks) {
-      if (listed.count(p) == 0) return name + " touches an unlisted block";
+    if (r.cost->num_residuals() < 1) return name + " has no residuals";
+    for (size_t j = 0; j < r.parameter_blocks.size(); ++j) {
+      const auto it = listed.find(r.parameter_blocks[j]);
+      if (it == listed.end()) return name + " touches an unlisted block";
+      if (it->second != r.cost->parameter_block_sizes()[j]) {
+        return name + ": parameter " + std::to_string(j) +
+               " has a size other than the listed block's";
+      }
     }
   }
   return "";
@@ -168,6 +176,54 @@ int PseudoInverse(const Eigen::MatrixXd& H_mm, double floor,
   return dropped;
 }
 
+// H* = H_kk - H_km H_mm^+ H_mk (symmetrised) and b* = b_k - H_km H_mm^+ b_m
+// for H, b ordered [marginalised (m_size) | kept]. Returns the rank
+// deficiency of H_mm.
+int SchurComplement(const Eigen::MatrixXd& H, const Eigen::VectorXd& b,
+                    int m_size, double floor, Eigen::MatrixXd* H_star,
+                    Eigen::VectorXd* b_star) {
+  const int k_size = static_cast<int>(H.rows()) - m_size;
+  Eigen::MatrixXd H_mm_inv;
+  const int deficiency =
+      PseudoInverse(H.topLeftCorner(m_size, m_size), floor, &H_mm_inv);
+  const Eigen::MatrixXd H_km_H_mm_inv =
+      H.bottomLeftCorner(k_size, m_size) * H_mm_inv;
+  *H_star = H.bottomRightCorner(k_size, k_size) -
+            H_km_H_mm_inv * H.topRightCorner(m_size, k_size);
+  *H_star = 0.5 * (*H_star + H_star->transpose());
+  *b_star = b.tail(k_size) - H_km_H_mm_inv * b.head(m_size);
+  return deficiency;
+}
+
+// H* = V S V^T with S floored at floor * max(S); J = sqrt(S) V^T and
+// r0 = -sqrt(S)^-1 V^T b*, so that J^T J = V S V^T and J^T r0 = -b* (V is
+// orthonormal). Returns the number of floored eigenvalues, or -1 when H* holds
+// no information at all (largest eigenvalue not > 0) or cannot be decomposed.
+int SquareRoot(const Eigen::MatrixXd& H_star, const Eigen::VectorXd& b_star,
+               double floor, Eigen::MatrixXd* J, Eigen::VectorXd* r0) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H_star);
+  if (eig.info() != Eigen::Success) return -1;
+  const double lambda_max = eig.eigenvalues().maxCoeff();
+  if (!(lambda_max > 0.0)) return -1;
+  Eigen::VectorXd s = eig.eigenvalues();
+  // The floor is relative but never below the smallest normal double, so
+  // that 1 / sqrt(s) stays finite.
+  const double s_min =
+      std::max(floor * lambda_max, std::numeric_limits<double>::min());
+  int floored = 0;
+  for (int i = 0; i < s.size(); ++i) {
+    if (s[i] < s_min) {
+      s[i] = s_min;
+      ++floored;
+    }
+  }
+  const Eigen::VectorXd sqrt_s = s.cwiseSqrt();
+  *J = sqrt_s.asDiagonal() * eig.eigenvectors().transpose();
+  *r0 = -(sqrt_s.cwiseInverse().asDiagonal() *
+          (eig.eigenvectors().transpose() * b_star));
+  return floored;
+}
+
 }  // namespace
 
 bool MarginalizationOptions::Validate(std::string* message) const {
@@ -221,42 +277,22 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
     }
   }
 
-  // Schur complement on the marginalised blocks.
-  Eigen::MatrixXd H_mm_inv;
+  Eigen::MatrixXd H_star;
+  Eigen::VectorXd b_star;
   result.marginalized_rank_deficiency =
-      PseudoInverse(H.topLeftCorner(m_size, m_size),
-                    options.marginalized_eigenvalue_floor, &H_mm_inv);
-  const Eigen::MatrixXd H_km_H_mm_inv =
-      H.bottomLeftCorner(k_size, m_size) * H_mm_inv;
-  Eigen::MatrixXd H_star = H.bottomRightCorner(k_size, k_size) -
-                           H_km_H_mm_inv * H.topRightCorner(m_size, k_size);
-  H_star = 0.5 * (H_star + H_star.transpose());
-  const Eigen::VectorXd b_star =
-      b.tail(k_size) - H_km_H_mm_inv * b.head(m_size);
+      SchurComplement(H, b, m_size, options.marginalized_eigenvalue_floor,
+                      &H_star, &b_star);
   if (!H_star.allFinite() || !b_star.allFinite()) {
     return fail("the Schur complement is not finite");
   }
-
-  // Square root: H* = V S V^T, J = sqrt(S) V^T, r0 = -sqrt(S)^-1 V^T b*.
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H_star);
-  const double lambda_max = eig.eigenvalues().maxCoeff();
-  if (eig.info() != Eigen::Success || !(lambda_max > 0.0)) {
+  result.num_floored_eigenvalues =
+      SquareRoot(H_star, b_star, options.prior_eigenvalue_floor,
+                 &result.jacobian, &result.residual0);
+  if (result.num_floored_eigenvalues < 0) {
     return fail("no information is left on the kept blocks (" +
                 std::to_string(result.num_skipped_residual_blocks) +
                 " residual blocks skipped)");
   }
-  Eigen::VectorXd s = eig.eigenvalues();
-  const double floor = options.prior_eigenvalue_floor * lambda_max;
-  for (int i = 0; i < s.size(); ++i) {
-    if (s[i] < floor || s[i] <= 0.0) {
-      s[i] = std::max(floor, std::numeric_limits<double>::min());
-      ++result.num_floored_eigenvalues;
-    }
-  }
-  const Eigen::VectorXd sqrt_s = s.cwiseSqrt();
-  result.jacobian = sqrt_s.asDiagonal() * eig.eigenvectors().transpose();
-  result.residual0 = -(sqrt_s.cwiseInverse().asDiagonal() *
-                       (eig.eigenvectors().transpose() * b_star));
   if (!result.jacobian.allFinite() || !result.residual0.allFinite()) {
     return fail("the prior's J or r0 is not finite");
   }

@@ -49,10 +49,25 @@ struct Residual {
 // latter with a Huber loss, some of them in its linear region).
 class MarginalizationTest : public ::testing::Test {
  protected:
+  // The ground truth is read once for all tests (22k lines).
+  static void SetUpTestSuite() {
+    try {
+      ground_truth_ = new std::vector<StampedState>(ReadEurocGroundTruth(
+          std::string(VIO_SHARED_DIR) +
+          "/data/euroc_MH_05_imu_gt/mav0/state_groundtruth_estimate0/"
+          "data.csv"));
+    } catch (const std::exception& e) {
+      load_error_ = e.what();
+    }
+  }
+  static void TearDownTestSuite() {
+    delete ground_truth_;
+    ground_truth_ = nullptr;
+  }
+
   void SetUp() override {
-    const std::vector<StampedState> gt = ReadEurocGroundTruth(
-        std::string(VIO_SHARED_DIR) +
-        "/data/euroc_MH_05_imu_gt/mav0/state_groundtruth_estimate0/data.csv");
+    ASSERT_NE(ground_truth_, nullptr) << load_error_;
+    const std::vector<StampedState>& gt = *ground_truth_;
     ASSERT_GT(gt.size(), kFirstState + kNumPoses * kStateStride);
     std::mt19937 rng(42);
     std::normal_distribution<double> n(0.0, 1.0);
@@ -219,6 +234,8 @@ class MarginalizationTest : public ::testing::Test {
     return n;
   }
 
+  static std::vector<StampedState>* ground_truth_;
+  static std::string load_error_;
   std::vector<StampedState> truth_;
   std::vector<Eigen::Vector3d> points_true_;
   std::vector<double> poses_[kNumPoses];
@@ -229,6 +246,9 @@ class MarginalizationTest : public ::testing::Test {
       std::make_shared<ceres::HuberLoss>(1.0);
   PoseManifold pose_manifold_;
 };
+
+std::vector<StampedState>* MarginalizationTest::ground_truth_ = nullptr;
+std::string MarginalizationTest::load_error_;
 
 double MaxAbs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
 
