@@ -279,9 +279,8 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
 
   Eigen::MatrixXd H_star;
   Eigen::VectorXd b_star;
-  result.marginalized_rank_deficiency =
-      SchurComplement(H, b, m_size, options.marginalized_eigenvalue_floor,
-                      &H_star, &b_star);
+  result.marginalized_rank_deficiency = SchurComplement(
+      H, b, m_size, options.marginalized_eigenvalue_floor, &H_star, &b_star);
   if (!H_star.allFinite() || !b_star.allFinite()) {
     return fail("the Schur complement is not finite");
   }
