@@ -19,8 +19,8 @@
 //        J = sqrt(S) V^T,   r0 = -sqrt(S)^-1 V^T b*
 //      so that J^T J = H* and J^T r0 = -b*: the prior r = r0 + J (x (-) x0)
 //      has the Schur complement's Hessian and gradient at x0.
-// References: Sibley et al., JFR 2010, sec. 2.2; Leutenegger et al., IJRR
-// 2015, sec. IV-E (the same construction, with the square root of H*).
+// References: Sibley et al., JFR 2010; Leutenegger et al., IJRR 2015 (the
+// same construction; the prior stores a square root of H*).
 //
 // A previous prior is re-marginalised like any other residual block (see
 // PriorResidualBlock below).

@@ -16,8 +16,9 @@
 // problem: J^T J = H* and J^T r0 = -b*, so that 1/2 |r|^2 equals, up to a
 // constant, the quadratic cost 1/2 dx^T H* dx - b*^T dx that the marginalised
 // states leave on the kept ones (Sibley et al., "Sliding window filter with
-// application to planetary landing", JFR 2010, sec. 2.2; Leutenegger et al.,
-// "Keyframe-based visual-inertial odometry", IJRR 2015, sec. IV-E).
+// application to planetary landing", JFR 2010; Leutenegger et al.,
+// "Keyframe-based visual-inertial odometry using nonlinear optimization",
+// IJRR 2015).
 //
 // Parameter blocks: the kept blocks, in the order given at construction, each
 // with its ambient size (7 for a pose, n for a Euclidean block of size n).

@@ -218,6 +218,24 @@ class MarginalizationTest : public ::testing::Test {
     *g = Eigen::Map<Eigen::VectorXd>(gradient.data(), gradient.size());
   }
 
+  // The Schur complement of the residual blocks touching marg, linearised by
+  // Ceres and reduced with a full inverse: H* and the gradient g*.
+  void DenseSchur(const std::vector<double*>& marg,
+                  const std::vector<double*>& kept, Eigen::MatrixXd* H_star,
+                  Eigen::VectorXd* g_star) {
+    std::vector<double*> order = marg;
+    order.insert(order.end(), kept.begin(), kept.end());
+    Eigen::MatrixXd H;
+    Eigen::VectorXd g;
+    CeresLinearise(Select(marg, true), order, &H, &g);
+    const int m = TangentSizeOf(marg, *this);
+    const int k = static_cast<int>(H.rows()) - m;
+    const Eigen::MatrixXd H_mm_inv = H.topLeftCorner(m, m).inverse();
+    *H_star = H.bottomRightCorner(k, k) -
+              H.bottomLeftCorner(k, m) * H_mm_inv * H.topRightCorner(m, k);
+    *g_star = g.tail(k) - H.bottomLeftCorner(k, m) * H_mm_inv * g.head(m);
+  }
+
   std::vector<const Residual*> Select(const std::vector<double*>& marg,
                                       bool touching) {
     std::vector<const Residual*> out;
@@ -295,19 +313,9 @@ TEST_F(MarginalizationTest, PriorEqualsDenseSchurComplement) {
   // eigenvalues, which the floor raises to 1e-10 of the largest.
   EXPECT_EQ(result.num_floored_eigenvalues, 6);
 
-  std::vector<double*> order = marg;
-  for (double* b : result.kept_parameter_blocks) order.push_back(b);
-  Eigen::MatrixXd H;
-  Eigen::VectorXd g;
-  CeresLinearise(Select(marg, true), order, &H, &g);
-  const int m = TangentSizeOf(marg, *this);
-  const int k = static_cast<int>(H.rows()) - m;
-  const Eigen::MatrixXd H_mm_inv = H.topLeftCorner(m, m).inverse();
-  const Eigen::MatrixXd H_star =
-      H.bottomRightCorner(k, k) -
-      H.bottomLeftCorner(k, m) * H_mm_inv * H.topRightCorner(m, k);
-  const Eigen::VectorXd g_star =
-      g.tail(k) - H.bottomLeftCorner(k, m) * H_mm_inv * g.head(m);
+  Eigen::MatrixXd H_star;
+  Eigen::VectorXd g_star;
+  DenseSchur(marg, result.kept_parameter_blocks, &H_star, &g_star);
 
   const double h_scale = MaxAbs(H_star), g_scale = g_star.cwiseAbs().maxCoeff();
   EXPECT_LT(MaxAbs(result.information - H_star), 1e-10 * h_scale);
@@ -449,6 +457,26 @@ TEST_F(MarginalizationTest, RemarginalisingAPriorEqualsOneStep) {
                 1e-9 * scale);
     }
   }
+}
+
+// A block held constant (say, a fixed extrinsic) gets no columns and is not
+// kept: the result is the Schur complement with that block fixed.
+TEST_F(MarginalizationTest, ConstantBlockIsNeitherColumnNorKept) {
+  const std::vector<double*> marg = {Pose(0), Speed(0), Point(0)};
+  MarginalizationProblem problem = ProblemFor(marg);
+  for (auto& p : problem.parameter_blocks) {
+    if (p.values == Point(1)) p.constant = true;
+  }
+  const MarginalizationResult result = Marginalize(problem);
+  ASSERT_TRUE(result.ok()) << result.message;
+  for (double* b : result.kept_parameter_blocks) EXPECT_NE(b, Point(1));
+  Eigen::MatrixXd H_star;
+  Eigen::VectorXd g_star;
+  // Ceres holds the blocks missing from the evaluation order constant.
+  DenseSchur(marg, result.kept_parameter_blocks, &H_star, &g_star);
+  EXPECT_LT(MaxAbs(result.information - H_star), 1e-10 * MaxAbs(H_star));
+  EXPECT_LT((result.gradient - g_star).cwiseAbs().maxCoeff(),
+            1e-10 * g_star.cwiseAbs().maxCoeff());
 }
 
 // Returns a NaN residual, or fails, as a broken factor might.
