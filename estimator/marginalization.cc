@@ -46,8 +46,10 @@ std::string CheckProblem(const MarginalizationProblem& problem) {
       return name + " has a non-finite value";
     }
   }
-  for (const double* m : problem.marginalized) {
-    if (listed.count(m) == 0) return "a marginalised block is not listed";
+  for (size_t i = 0; i < problem.marginalized.size(); ++i) {
+    if (listed.count(problem.marginalized[i]) == 0) {
+      return "marginalised block " + std::to_string(i) + " is not listed";
+    }
   }
   for (size_t i = 0; i < problem.residual_blocks.size(); ++i) {
     const MarginalizationResidualBlock& r = problem.residual_blocks[i];
@@ -160,6 +162,10 @@ bool Accumulate(const MarginalizationResidualBlock& r,
 // below floor * max count as zero. Returns the number of dropped directions.
 int PseudoInverse(const Eigen::MatrixXd& H_mm, double floor,
                   Eigen::MatrixXd* inverse) {
+  if (H_mm.rows() == 0) {  // nothing marginalised: H* = H_kk
+    inverse->resize(0, 0);
+    return 0;
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(
       0.5 * (H_mm + H_mm.transpose()));
   const Eigen::VectorXd& lambda = eig.eigenvalues();
@@ -254,7 +260,9 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
   for (const MarginalizationParameterBlock* p : kept) {
     if (p->manifold != nullptr &&
         dynamic_cast<const PoseManifold*>(p->manifold) == nullptr) {
-      return Failure("a kept block has a manifold other than PoseManifold");
+      return Failure("parameter block " +
+                     std::to_string(p - problem.parameter_blocks.data()) +
+                     " is kept but has a manifold other than PoseManifold");
     }
   }
 

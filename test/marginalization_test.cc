@@ -2,6 +2,7 @@
 
 #include <ceres/crs_matrix.h>
 #include <ceres/loss_function.h>
+#include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/sized_cost_function.h>
 #include <gtest/gtest.h>
@@ -577,6 +578,18 @@ TEST_F(MarginalizationTest, ResidualOnUnlistedBlockFails) {
   const MarginalizationResult result = Marginalize(problem);
   EXPECT_EQ(result.status, MarginalizationStatus::kFailed);
   EXPECT_NE(result.message.find("unlisted"), std::string::npos);
+}
+
+TEST_F(MarginalizationTest, KeptBlockWithForeignManifoldFails) {
+  MarginalizationProblem problem = ProblemFor({Pose(0)});
+  const ceres::SubsetManifold fix_x(3, {0});
+  for (auto& p : problem.parameter_blocks) {
+    if (p.values == Speed(0)) p.manifold = &fix_x;
+  }
+  const MarginalizationResult result = Marginalize(problem);
+  EXPECT_EQ(result.status, MarginalizationStatus::kFailed);
+  EXPECT_NE(result.message.find("parameter block 4 is kept"), std::string::npos)
+      << result.message;
 }
 
 }  // namespace
