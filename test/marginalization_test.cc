@@ -5,6 +5,7 @@
 #include <ceres/manifold.h>
 #include <ceres/problem.h>
 #include <ceres/sized_cost_function.h>
+#include <ceres/solver.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -593,6 +594,87 @@ TEST_F(MarginalizationTest, KeptBlockWithForeignManifoldFails) {
   EXPECT_EQ(result.status, MarginalizationStatus::kFailed);
   EXPECT_NE(result.message.find("parameter block 4 is kept"), std::string::npos)
       << result.message;
+}
+
+// On a linear problem the prior is exact: Ceres solving the window with the
+// prior in place of the leaving block reaches the full problem's solution on
+// the kept blocks.
+TEST(Marginalization, CeresSolveWithPriorMatchesFullSolveOnLinearChain) {
+  constexpr int kBlocks = 5;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<std::vector<double>> x(kBlocks, std::vector<double>(3, 0.0));
+  std::vector<double> origin = {0.0, 0.0, 0.0};
+  std::vector<std::unique_ptr<DifferenceTestFactor>> factors;
+  std::vector<std::vector<double*>> blocks;
+  for (int i = 0; i < kBlocks; ++i) {
+    Eigen::Matrix3d W = Eigen::Matrix3d::Identity() * (5.0 + i);
+    W(0, 1) = 1.0;
+    double* from = i == 0 ? origin.data() : x[i - 1].data();
+    factors.push_back(std::make_unique<DifferenceTestFactor>(
+        Eigen::Vector3d(1.0 + n(rng), n(rng), n(rng)), W));
+    blocks.push_back({from, x[i].data()});
+  }
+  // A second chain edge 0 -> 2 so that block 0 couples two kept blocks.
+  factors.push_back(std::make_unique<DifferenceTestFactor>(
+      Eigen::Vector3d(2.0, 0.5, -0.5), 3.0 * Eigen::Matrix3d::Identity()));
+  blocks.push_back({x[0].data(), x[2].data()});
+
+  MarginalizationProblem problem;
+  problem.parameter_blocks.push_back({origin.data(), 3, nullptr, true});
+  for (auto& b : x) problem.parameter_blocks.push_back({b.data(), 3});
+  for (size_t f = 0; f < factors.size(); ++f) {
+    const bool touches_0 =
+        blocks[f][0] == x[0].data() || blocks[f][1] == x[0].data();
+    if (touches_0)
+      problem.residual_blocks.push_back({factors[f].get(), nullptr, blocks[f]});
+  }
+  problem.marginalized = {x[0].data()};
+  const MarginalizationResult result = Marginalize(problem);
+  ASSERT_EQ(result.status, MarginalizationStatus::kOk) << result.message;
+
+  auto solve = [&](bool with_prior) {
+    std::vector<std::vector<double>> saved = x;
+    ceres::Problem::Options options;
+    options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem ceres_problem(options);
+    for (size_t f = 0; f < factors.size(); ++f) {
+      const bool touches_0 =
+          blocks[f][0] == x[0].data() || blocks[f][1] == x[0].data();
+      if (!with_prior || !touches_0) {
+        ceres_problem.AddResidualBlock(factors[f].get(), nullptr, blocks[f]);
+      }
+    }
+    std::unique_ptr<MarginalizationPrior> prior = result.MakePrior();
+    if (with_prior) {
+      ceres_problem.AddResidualBlock(prior.get(), nullptr,
+                                     result.kept_parameter_blocks);
+    }
+    if (ceres_problem.HasParameterBlock(origin.data())) {
+      ceres_problem.SetParameterBlockConstant(origin.data());
+    }
+    ceres::Solver::Options solver;
+    solver.max_num_iterations = 10;
+    // A huge trust region makes LM's first step the Gauss-Newton step, which
+    // solves a linear problem exactly.
+    solver.initial_trust_region_radius = 1e16;
+    solver.function_tolerance = 1e-16;
+    solver.gradient_tolerance = 1e-16;
+    solver.parameter_tolerance = 1e-16;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &ceres_problem, &summary);
+    std::vector<std::vector<double>> solution = x;
+    x = saved;
+    return solution;
+  };
+  const auto full = solve(false);
+  const auto reduced = solve(true);
+  for (int i = 1; i < kBlocks; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(full[i][k], reduced[i][k], 1e-11) << "block " << i;
+    }
+  }
+  EXPECT_GT(std::abs(full[kBlocks - 1][0]), 1.0);  // the solve moved x
 }
 
 }  // namespace
