@@ -1,293 +1,33 @@
 #include "estimator/marginalization.h"
 
-#include <ceres/crs_matrix.h>
-#include <ceres/loss_function.h>
-#include <ceres/manifold.h>
 #include <ceres/problem.h>
-#include <ceres/sized_cost_function.h>
 #include <ceres/solver.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "dataset/trajectory_io.h"
 #include "factors/check/jacobian_check.h"
 #include "factors/pose_manifold.h"
-#include "geometry/so3.h"
+#include "test/testing/marginalization_window.h"
 #include "test/testing/pose_test_factors.h"
 
 namespace vio {
 namespace {
 
+using testing::Borrowed;
+using testing::MarginalizationWindowTest;
+
 using testing::DifferenceTestFactor;
-using testing::Matrix6d;
-using testing::PointTestFactor;
-using testing::PosePriorTestFactor;
-using testing::RelativePoseTestFactor;
+using testing::MaxAbs;
+using testing::Residual;
 
-constexpr int kNumPoses = 4;
-constexpr int kNumPoints = 3;
-constexpr int kFirstState = 4000;  // 20 s into MH_05, while flying
-constexpr int kStateStride = 100;  // 0.5 s at 200 Hz
-
-// A residual block of the test problem, owning its cost and loss.
-struct Residual {
-  std::shared_ptr<ceres::CostFunction> cost;
-  std::shared_ptr<ceres::LossFunction> loss;
-  std::vector<double*> blocks;
-};
-
-// A small window on real poses: 4 poses of MH_05_difficult's ground truth
-// (0.5 s apart), their speeds (3, Euclidean) and 3 points (3, Euclidean),
-// all perturbed away from the truth, with a pose prior on pose 0, relative
-// pose factors, speed differences, pose-speed and pose-point factors (the
-// latter with a Huber loss, some of them in its linear region).
-class MarginalizationTest : public ::testing::Test {
- protected:
-  // The ground truth is read once for all tests (22k lines).
-  static void SetUpTestSuite() {
-    try {
-      ground_truth_ = new std::vector<StampedState>(ReadEurocGroundTruth(
-          std::string(VIO_SHARED_DIR) +
-          "/data/euroc_MH_05_imu_gt/mav0/state_groundtruth_estimate0/"
-          "data.csv"));
-    } catch (const std::exception& e) {
-      load_error_ = e.what();
-    }
-  }
-  static void TearDownTestSuite() {
-    delete ground_truth_;
-    ground_truth_ = nullptr;
-  }
-
-  void SetUp() override {
-    ASSERT_NE(ground_truth_, nullptr) << load_error_;
-    const std::vector<StampedState>& gt = *ground_truth_;
-    ASSERT_GT(gt.size(), kFirstState + kNumPoses * kStateStride);
-    std::mt19937 rng(42);
-    std::normal_distribution<double> n(0.0, 1.0);
-    auto noise = [&](double sigma) -> Eigen::Vector3d {
-      return Eigen::Vector3d(n(rng), n(rng), n(rng)) * sigma;
-    };
-    for (int i = 0; i < kNumPoses; ++i) {
-      const StampedState& s = gt[kFirstState + i * kStateStride];
-      truth_.push_back(s);
-      const Eigen::Vector3d p = s.p_w_b + noise(0.05);
-      const Eigen::Quaterniond q = s.q_w_b * ExpQuaternion(noise(0.02));
-      poses_[i] = {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w()};
-      const Eigen::Vector3d v = s.v_w + noise(0.05);
-      speeds_[i] = {v.x(), v.y(), v.z()};
-    }
-    for (int k = 0; k < kNumPoints; ++k) {
-      const Eigen::Vector3d l_true = truth_[0].p_w_b + noise(3.0);
-      points_true_.push_back(l_true);
-      const Eigen::Vector3d l = l_true + noise(0.1);
-      points_[k] = {l.x(), l.y(), l.z()};
-    }
-    BuildResiduals(noise);
-  }
-
-  template <typename Noise>
-  void BuildResiduals(Noise& noise) {
-    Matrix6d W_rel = Matrix6d::Zero();
-    W_rel.diagonal() << 20, 20, 20, 100, 100, 100;
-    W_rel(0, 4) = 15.0;  // some correlation between blocks' coordinates
-    const Eigen::Vector3d t0 = truth_[0].p_w_b + noise(0.02);
-    Add(std::make_shared<PosePriorTestFactor>(t0, truth_[0].q_w_b,
-                                              10.0 * Matrix6d::Identity()),
-        nullptr, {Pose(0)});
-    for (int i = 0; i + 1 < kNumPoses; ++i) {
-      const Eigen::Matrix3d R_i_T =
-          truth_[i].q_w_b.toRotationMatrix().transpose();
-      const Eigen::Vector3d t_ij =
-          R_i_T * (truth_[i + 1].p_w_b - truth_[i].p_w_b) + noise(0.02);
-      const Eigen::Quaterniond q_ij = truth_[i].q_w_b.conjugate() *
-                                      truth_[i + 1].q_w_b *
-                                      ExpQuaternion(noise(0.005));
-      Add(std::make_shared<RelativePoseTestFactor>(t_ij, q_ij, W_rel), nullptr,
-          {Pose(i), Pose(i + 1)});
-      const Eigen::Vector3d dv = truth_[i + 1].v_w - truth_[i].v_w;
-      Add(std::make_shared<DifferenceTestFactor>(
-              dv + noise(0.02), 10.0 * Eigen::Matrix3d::Identity()),
-          nullptr, {Speed(i), Speed(i + 1)});
-    }
-    for (int i = 0; i < kNumPoses; ++i) {
-      const Eigen::Matrix3d R_T =
-          truth_[i].q_w_b.toRotationMatrix().transpose();
-      // Pose-speed coupling: v seen in the body frame, R^T (v - t).
-      const Eigen::Vector3d z_v = R_T * (truth_[i].v_w - truth_[i].p_w_b);
-      Add(std::make_shared<PointTestFactor>(z_v + noise(0.05),
-                                            20.0 * Eigen::Matrix3d::Identity()),
-          nullptr, {Pose(i), Speed(i)});
-      for (int k = 0; k < kNumPoints; ++k) {
-        const Eigen::Vector3d z = R_T * (points_true_[k] - truth_[i].p_w_b);
-        Add(std::make_shared<PointTestFactor>(
-                z + noise(0.05), 10.0 * Eigen::Matrix3d::Identity()),
-            huber_, {Pose(i), Point(k)});
-      }
-    }
-  }
-
-  void Add(std::shared_ptr<ceres::CostFunction> cost,
-           std::shared_ptr<ceres::LossFunction> loss,
-           std::vector<double*> blocks) {
-    residuals_.push_back({std::move(cost), std::move(loss), std::move(blocks)});
-  }
-
-  double* Pose(int i) { return poses_[i].data(); }
-  double* Speed(int i) { return speeds_[i].data(); }
-  double* Point(int k) { return points_[k].data(); }
-
-  bool IsPose(const double* x) const {
-    for (const auto& p : poses_) {
-      if (p.data() == x) return true;
-    }
-    return false;
-  }
-  int SizeOf(const double* x) const { return IsPose(x) ? 7 : 3; }
-
-  std::vector<MarginalizationParameterBlock> AllBlocks() {
-    std::vector<MarginalizationParameterBlock> blocks;
-    for (int i = 0; i < kNumPoses; ++i) {
-      blocks.push_back({Pose(i), 7, &pose_manifold_, false});
-    }
-    for (int i = 0; i < kNumPoses; ++i) blocks.push_back({Speed(i), 3});
-    for (int k = 0; k < kNumPoints; ++k) blocks.push_back({Point(k), 3});
-    return blocks;
-  }
-
-  static bool Touches(const Residual& r, const std::vector<double*>& set) {
-    for (double* b : r.blocks) {
-      for (double* s : set) {
-        if (b == s) return true;
-      }
-    }
-    return false;
-  }
-
-  // The marginalisation input for the blocks in marg.
-  MarginalizationProblem ProblemFor(const std::vector<double*>& marg) {
-    MarginalizationProblem problem;
-    problem.parameter_blocks = AllBlocks();
-    for (const Residual& r : residuals_) {
-      if (Touches(r, marg)) {
-        problem.residual_blocks.push_back(
-            {r.cost.get(), r.loss.get(), r.blocks});
-      }
-    }
-    problem.marginalized.assign(marg.begin(), marg.end());
-    return problem;
-  }
-
-  // Linearises residuals over the tangent space with Ceres itself
-  // (ceres::Problem::Evaluate, loss applied) in the given block order:
-  // returns H = J^T J and g = J^T r.
-  void CeresLinearise(const std::vector<const Residual*>& residuals,
-                      const std::vector<double*>& order, Eigen::MatrixXd* H,
-                      Eigen::VectorXd* g) {
-    ceres::Problem::Options options;
-    options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    ceres::Problem problem(options);
-    for (const Residual* r : residuals) {
-      problem.AddResidualBlock(r->cost.get(), r->loss.get(), r->blocks);
-    }
-    for (double* b : order) {
-      if (!problem.HasParameterBlock(b))
-        problem.AddParameterBlock(b, SizeOf(b));
-      if (IsPose(b)) problem.SetManifold(b, &pose_manifold_);
-    }
-    ceres::Problem::EvaluateOptions eval;
-    eval.parameter_blocks = order;
-    std::vector<double> gradient;
-    ceres::CRSMatrix crs;
-    ASSERT_TRUE(problem.Evaluate(eval, nullptr, nullptr, &gradient, &crs));
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-    for (int row = 0; row < crs.num_rows; ++row) {
-      for (int k = crs.rows[row]; k < crs.rows[row + 1]; ++k) {
-        J(row, crs.cols[k]) = crs.values[k];
-      }
-    }
-    *H = J.transpose() * J;
-    *g = Eigen::Map<Eigen::VectorXd>(gradient.data(), gradient.size());
-  }
-
-  // The Schur complement of the residual blocks touching marg, linearised by
-  // Ceres and reduced with a full inverse: H* and the gradient g*.
-  void DenseSchur(const std::vector<double*>& marg,
-                  const std::vector<double*>& kept, Eigen::MatrixXd* H_star,
-                  Eigen::VectorXd* g_star) {
-    std::vector<double*> order = marg;
-    order.insert(order.end(), kept.begin(), kept.end());
-    Eigen::MatrixXd H;
-    Eigen::VectorXd g;
-    CeresLinearise(Select(marg, true), order, &H, &g);
-    const int m = TangentSizeOf(marg, *this);
-    const int k = static_cast<int>(H.rows()) - m;
-    const Eigen::MatrixXd H_mm_inv = H.topLeftCorner(m, m).inverse();
-    *H_star = H.bottomRightCorner(k, k) -
-              H.bottomLeftCorner(k, m) * H_mm_inv * H.topRightCorner(m, k);
-    *g_star = g.tail(k) - H.bottomLeftCorner(k, m) * H_mm_inv * g.head(m);
-  }
-
-  std::vector<const Residual*> Select(const std::vector<double*>& marg,
-                                      bool touching) {
-    std::vector<const Residual*> out;
-    for (const Residual& r : residuals_) {
-      if (Touches(r, marg) == touching) out.push_back(&r);
-    }
-    return out;
-  }
-
-  static int TangentSizeOf(const std::vector<double*>& blocks,
-                           const MarginalizationTest& t) {
-    int n = 0;
-    for (double* b : blocks) n += t.IsPose(b) ? 6 : 3;
-    return n;
-  }
-
-  static std::vector<StampedState>* ground_truth_;
-  static std::string load_error_;
-  std::vector<StampedState> truth_;
-  std::vector<Eigen::Vector3d> points_true_;
-  std::vector<double> poses_[kNumPoses];
-  std::vector<double> speeds_[kNumPoses];
-  std::vector<double> points_[kNumPoints];
-  std::vector<Residual> residuals_;
-  std::shared_ptr<ceres::LossFunction> huber_ =
-      std::make_shared<ceres::HuberLoss>(1.0);
-  PoseManifold pose_manifold_;
-};
-
-std::vector<StampedState>* MarginalizationTest::ground_truth_ = nullptr;
-std::string MarginalizationTest::load_error_;
-
-double MaxAbs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
-
-// A non-owning view of a cost function, for FactorInstance (which owns).
-class Borrowed final : public ceres::CostFunction {
- public:
-  explicit Borrowed(const ceres::CostFunction* f) : f_(f) {
-    set_num_residuals(f->num_residuals());
-    *mutable_parameter_block_sizes() = f->parameter_block_sizes();
-  }
-  bool Evaluate(double const* const* p, double* r, double** j) const override {
-    return f_->Evaluate(p, r, j);
-  }
-
- private:
-  const ceres::CostFunction* f_;
-};
-
-TEST_F(MarginalizationTest, TestFactorJacobiansMatchNumericDiff) {
+TEST_F(MarginalizationWindowTest, TestFactorJacobiansMatchNumericDiff) {
   for (const Residual& r : residuals_) {
     FactorInstance f;
     f.cost = std::make_unique<Borrowed>(r.cost.get());
@@ -306,7 +46,7 @@ TEST_F(MarginalizationTest, TestFactorJacobiansMatchNumericDiff) {
 // complement of the linearised problem, which Ceres linearises here (with the
 // Huber loss applied by Ceres' own corrector) and the test reduces densely
 // with a full inverse.
-TEST_F(MarginalizationTest, PriorEqualsDenseSchurComplement) {
+TEST_F(MarginalizationWindowTest, PriorEqualsDenseSchurComplement) {
   const std::vector<double*> marg = {Pose(0), Speed(0), Point(0)};
   const MarginalizationResult result = Marginalize(ProblemFor(marg));
   ASSERT_EQ(result.status, MarginalizationStatus::kOk) << result.message;
@@ -353,7 +93,7 @@ TEST_F(MarginalizationTest, PriorEqualsDenseSchurComplement) {
 // One Gauss-Newton step of the whole problem, restricted to the kept blocks,
 // equals the step of the reduced problem: the prior plus the residual blocks
 // that did not touch the marginalised blocks.
-TEST_F(MarginalizationTest, GaussNewtonStepWithPriorEqualsFullStep) {
+TEST_F(MarginalizationWindowTest, GaussNewtonStepWithPriorEqualsFullStep) {
   const std::vector<double*> marg = {Pose(0), Speed(0), Point(0)};
   const MarginalizationResult result = Marginalize(ProblemFor(marg));
   ASSERT_TRUE(result.ok()) << result.message;
@@ -398,7 +138,7 @@ TEST_F(MarginalizationTest, GaussNewtonStepWithPriorEqualsFullStep) {
 
 // Marginalising pose 0 and then pose 1 (re-marginalising the first prior)
 // leaves the same information as marginalising both at once.
-TEST_F(MarginalizationTest, RemarginalisingAPriorEqualsOneStep) {
+TEST_F(MarginalizationWindowTest, RemarginalisingAPriorEqualsOneStep) {
   const std::vector<double*> first = {Pose(0), Speed(0), Point(0)};
   const MarginalizationResult step1 = Marginalize(ProblemFor(first));
   ASSERT_TRUE(step1.ok()) << step1.message;
@@ -466,7 +206,7 @@ TEST_F(MarginalizationTest, RemarginalisingAPriorEqualsOneStep) {
 
 // A block held constant (say, a fixed extrinsic) gets no columns and is not
 // kept: the result is the Schur complement with that block fixed.
-TEST_F(MarginalizationTest, ConstantBlockIsNeitherColumnNorKept) {
+TEST_F(MarginalizationWindowTest, ConstantBlockIsNeitherColumnNorKept) {
   const std::vector<double*> marg = {Pose(0), Speed(0), Point(0)};
   MarginalizationProblem problem = ProblemFor(marg);
   for (auto& p : problem.parameter_blocks) {
@@ -482,118 +222,6 @@ TEST_F(MarginalizationTest, ConstantBlockIsNeitherColumnNorKept) {
   EXPECT_LT(MaxAbs(result.information - H_star), 1e-10 * MaxAbs(H_star));
   EXPECT_LT((result.gradient - g_star).cwiseAbs().maxCoeff(),
             1e-10 * g_star.cwiseAbs().maxCoeff());
-}
-
-// Returns a NaN residual, or fails, as a broken factor might.
-class BrokenTestFactor final : public ceres::SizedCostFunction<1, 3> {
- public:
-  explicit BrokenTestFactor(bool fail) : fail_(fail) {}
-  bool Evaluate(double const* const*, double* residuals,
-                double** jacobians) const override {
-    residuals[0] = std::numeric_limits<double>::quiet_NaN();
-    if (jacobians != nullptr && jacobians[0] != nullptr) {
-      for (int i = 0; i < 3; ++i) jacobians[0][i] = 1.0;
-    }
-    return !fail_;
-  }
-
- private:
-  bool fail_;
-};
-
-bool AllFinite(const MarginalizationResult& r) {
-  return r.jacobian.allFinite() && r.residual0.allFinite() &&
-         r.information.allFinite() && r.gradient.allFinite();
-}
-
-TEST_F(MarginalizationTest, BrokenResidualBlocksAreSkippedAndCounted) {
-  const std::vector<double*> marg = {Pose(0), Speed(0), Point(0)};
-  const MarginalizationResult clean = Marginalize(ProblemFor(marg));
-  MarginalizationProblem problem = ProblemFor(marg);
-  const BrokenTestFactor nan_factor(false), failing_factor(true);
-  problem.residual_blocks.push_back({&nan_factor, nullptr, {Point(0)}});
-  problem.residual_blocks.push_back({&failing_factor, nullptr, {Speed(0)}});
-  const MarginalizationResult result = Marginalize(problem);
-  EXPECT_EQ(result.status, MarginalizationStatus::kDegenerate);
-  EXPECT_EQ(result.num_skipped_residual_blocks, 2);
-  EXPECT_EQ(result.num_residual_blocks_used, clean.num_residual_blocks_used);
-  ASSERT_TRUE(AllFinite(result));
-  EXPECT_LT(MaxAbs(result.information - clean.information),
-            1e-12 * MaxAbs(clean.information));
-}
-
-// A point seen along one direction only (a rank-one observation) leaves
-// H_mm rank deficient; it then carries no information to the pose, so the
-// prior is exactly the pose factors' own information.
-TEST_F(MarginalizationTest, RankDeficientMarginalBlockGivesStatusAndNoNaN) {
-  Eigen::Matrix<double, 1, 3> e_x(10.0, 0.0, 0.0);
-  const PointTestFactor one_direction(Eigen::Vector3d(1.0, 2.0, 3.0), e_x);
-  const Residual& pose_prior = residuals_[0];  // touches pose 0 only
-  const Residual& relative01 = residuals_[1];  // pose 0 - pose 1
-  MarginalizationProblem problem;
-  problem.parameter_blocks = AllBlocks();
-  problem.residual_blocks = {
-      {&one_direction, nullptr, {Pose(0), Point(0)}},
-      {pose_prior.cost.get(), nullptr, pose_prior.blocks},
-      {relative01.cost.get(), nullptr, relative01.blocks}};
-  // Speed 0 is listed for marginalisation but no residual touches it.
-  problem.marginalized = {Point(0), Speed(0)};
-  const MarginalizationResult result = Marginalize(problem);
-  EXPECT_EQ(result.status, MarginalizationStatus::kDegenerate);
-  EXPECT_EQ(result.marginalized_rank_deficiency, 2 + 3);
-  ASSERT_TRUE(AllFinite(result));
-
-  Eigen::MatrixXd H;
-  Eigen::VectorXd g;
-  CeresLinearise({&pose_prior, &relative01}, result.kept_parameter_blocks, &H,
-                 &g);
-  EXPECT_LT(MaxAbs(result.information - H), 1e-9 * MaxAbs(H));
-  EXPECT_LT((result.gradient - g).cwiseAbs().maxCoeff(),
-            1e-9 * g.cwiseAbs().maxCoeff());
-}
-
-TEST_F(MarginalizationTest, NonFiniteParameterFailsWithMessage) {
-  const std::vector<double*> marg = {Pose(0), Speed(0), Point(0)};
-  Speed(1)[2] = std::numeric_limits<double>::quiet_NaN();
-  const MarginalizationResult result = Marginalize(ProblemFor(marg));
-  EXPECT_EQ(result.status, MarginalizationStatus::kFailed);
-  EXPECT_NE(result.message.find("non-finite"), std::string::npos)
-      << result.message;
-  EXPECT_EQ(result.jacobian.size(), 0);
-}
-
-TEST_F(MarginalizationTest, NoUsableResidualFails) {
-  const BrokenTestFactor nan_factor(false);
-  MarginalizationProblem problem;
-  problem.parameter_blocks = AllBlocks();
-  problem.residual_blocks = {{&nan_factor, nullptr, {Point(0)}},
-                             {&nan_factor, nullptr, {Point(1)}}};
-  problem.marginalized = {Point(0)};
-  const MarginalizationResult result = Marginalize(problem);
-  EXPECT_EQ(result.status, MarginalizationStatus::kFailed);
-  EXPECT_EQ(result.num_skipped_residual_blocks, 2);
-}
-
-TEST_F(MarginalizationTest, ResidualOnUnlistedBlockFails) {
-  MarginalizationProblem problem = ProblemFor({Pose(0)});
-  double unlisted[3] = {0.0, 0.0, 0.0};
-  const BrokenTestFactor factor(false);
-  problem.residual_blocks.push_back({&factor, nullptr, {unlisted}});
-  const MarginalizationResult result = Marginalize(problem);
-  EXPECT_EQ(result.status, MarginalizationStatus::kFailed);
-  EXPECT_NE(result.message.find("unlisted"), std::string::npos);
-}
-
-TEST_F(MarginalizationTest, KeptBlockWithForeignManifoldFails) {
-  MarginalizationProblem problem = ProblemFor({Pose(0)});
-  const ceres::SubsetManifold fix_x(3, {0});
-  for (auto& p : problem.parameter_blocks) {
-    if (p.values == Speed(0)) p.manifold = &fix_x;
-  }
-  const MarginalizationResult result = Marginalize(problem);
-  EXPECT_EQ(result.status, MarginalizationStatus::kFailed);
-  EXPECT_NE(result.message.find("parameter block 4 is kept"), std::string::npos)
-      << result.message;
 }
 
 // On a linear problem the prior is exact: Ceres solving the window with the
