@@ -4,6 +4,7 @@ namespace vio {
 
 std::vector<FactorCase> AllFactorCases() {
   std::vector<FactorCase> cases;
+  cases.push_back(MakeImuFactorCase());
   cases.push_back(MarginalizationPriorCase());
   return cases;
 }

@@ -14,6 +14,9 @@ namespace vio {
 // All cases, in a fixed order (the order of the jacobian_check table).
 std::vector<FactorCase> AllFactorCases();
 
+// The IMU factor (factors/imu_factor.h); check/imu_factor_case.cc.
+FactorCase MakeImuFactorCase();
+
 // The marginalisation prior (factors/marginalization_prior.h).
 FactorCase MarginalizationPriorCase();
 
