@@ -5,6 +5,10 @@ namespace vio {
 std::vector<FactorCase> AllFactorCases() {
   std::vector<FactorCase> cases;
   cases.push_back(MakeImuFactorCase());
+  cases.push_back(MakeReprojectionCase());
+  cases.push_back(MakeTimedReprojectionCase());
+  cases.push_back(MakeStereoReprojectionCase());
+  cases.push_back(MakeStereoTwoFrameReprojectionCase());
   cases.push_back(MarginalizationPriorCase());
   return cases;
 }
