@@ -21,7 +21,7 @@ FactorCase PriorCase() {
     if (c.name == "marginalization_prior") return c;
   }
   ADD_FAILURE() << "marginalization_prior is not registered";
-  return MarginalizationPriorCase();
+  return MakeMarginalizationPriorCase();
 }
 
 std::vector<const double*> Pointers(const FactorInstance& f) {

@@ -51,7 +51,7 @@ FactorCase MakeStereoTwoFrameReprojectionCase(
     VisualGeometry geometry = VisualGeometry::kMixed);
 
 // The marginalisation prior (factors/marginalization_prior.h).
-FactorCase MarginalizationPriorCase();
+FactorCase MakeMarginalizationPriorCase();
 
 }  // namespace vio
 

@@ -135,7 +135,7 @@ FactorInstance SampleMarginalizationPrior(std::mt19937& rng) {
 
 }  // namespace
 
-FactorCase MarginalizationPriorCase() {
+FactorCase MakeMarginalizationPriorCase() {
   FactorCase c;
   c.name = "marginalization_prior";
   c.description =
