@@ -1,0 +1,145 @@
+#include "estimator/feature_manager.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace vio {
+namespace {
+
+bool Before(const Sighting& a, const Sighting& b) {
+  return a.frame_id < b.frame_id ||
+         (a.frame_id == b.frame_id && a.camera < b.camera);
+}
+
+const Sighting* FindSighting(const Landmark& l, int64_t frame_id, int camera) {
+  for (const Sighting& s : l.sightings) {
+    if (s.frame_id == frame_id && s.camera == camera) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+FrameAddStats FeatureManager::AddFrame(
+    int64_t frame_id, const std::vector<FeatureObservation>& observations) {
+  if (frame_id <= last_frame_id_) {
+    throw std::invalid_argument("FeatureManager::AddFrame: frame id " +
+                                std::to_string(frame_id) + " does not follow " +
+                                std::to_string(last_frame_id_));
+  }
+  last_frame_id_ = frame_id;
+  FrameAddStats stats;
+  std::set<std::pair<int64_t, int>> seen;
+  for (const FeatureObservation& o : observations) {
+    const bool valid = o.camera >= 0 && o.camera < num_cameras_ &&
+                       o.xy.allFinite() && o.velocity.allFinite() &&
+                       seen.insert({o.feature_id, o.camera}).second;
+    if (!valid) {
+      ++stats.skipped;
+      continue;
+    }
+    Landmark& l = landmarks_[o.feature_id];
+    l.feature_id = o.feature_id;
+    if (o.camera == 0 && !l.sightings.empty() &&
+        l.sightings.back().frame_id < frame_id) {
+      ++stats.tracked;
+    }
+    Sighting s{frame_id, o.camera, o.xy, o.velocity};
+    // Observations arrive camera by camera; keep (frame, camera) order.
+    l.sightings.insert(
+        std::upper_bound(l.sightings.begin(), l.sightings.end(), s, Before), s);
+    ++stats.added;
+  }
+  return stats;
+}
+
+double FeatureManager::MeanParallax(int64_t frame_a, int64_t frame_b,
+                                    int* common) const {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& [id, l] : landmarks_) {
+    const Sighting* a = FindSighting(l, frame_a, 0);
+    const Sighting* b = FindSighting(l, frame_b, 0);
+    if (a == nullptr || b == nullptr) continue;
+    sum += (a->xy - b->xy).norm();
+    ++n;
+  }
+  *common = n;
+  return n > 0 ? sum / n : 0.0;
+}
+
+Eigen::Vector3d FeatureManager::WorldPoint(const Landmark& landmark,
+                                           const CameraPoseFn& T_w_c) {
+  const Sighting& a = landmark.anchor();
+  return T_w_c(a.frame_id, a.camera) *
+         (a.xy.homogeneous() / landmark.inverse_depth);
+}
+
+void FeatureManager::RemoveFrame(int64_t frame_id, const CameraPoseFn& T_w_c) {
+  for (auto it = landmarks_.begin(); it != landmarks_.end();) {
+    Landmark& l = it->second;
+    const bool anchored_here = l.anchor().frame_id == frame_id;
+    // Only a triangulated landmark has a point to carry over.
+    Eigen::Vector3d p_w = Eigen::Vector3d::Zero();
+    if (anchored_here && l.triangulated) p_w = WorldPoint(l, T_w_c);
+    l.sightings.erase(std::remove_if(l.sightings.begin(), l.sightings.end(),
+                                     [frame_id](const Sighting& s) {
+                                       return s.frame_id == frame_id;
+                                     }),
+                      l.sightings.end());
+    if (l.sightings.empty()) {
+      it = landmarks_.erase(it);
+      continue;
+    }
+    if (anchored_here && l.triangulated) {
+      // rho_new = 1 / z of the point in the new anchor camera.
+      const Sighting& a = l.anchor();
+      const double depth = (T_w_c(a.frame_id, a.camera).inverse() * p_w).z();
+      l.triangulated = std::isfinite(depth) && depth > 0.0;
+      l.inverse_depth = l.triangulated ? 1.0 / depth : 0.0;
+    }
+    ++it;
+  }
+}
+
+int FeatureManager::TriangulateNew(const CameraPoseFn& T_w_c,
+                                   const TriangulationOptions& options) {
+  int count = 0;
+  std::vector<TriangulationView> views;
+  for (auto& [id, l] : landmarks_) {
+    if (l.triangulated ||
+        static_cast<int>(l.sightings.size()) < options.min_observations) {
+      continue;
+    }
+    views.clear();
+    for (const Sighting& s : l.sightings) {
+      views.push_back({T_w_c(s.frame_id, s.camera), s.xy});
+    }
+    Eigen::Vector3d p_w;
+    double depth = 0.0;
+    if (Triangulate(views, options, &p_w, &depth) == TriangulationStatus::kOk) {
+      l.triangulated = true;
+      l.inverse_depth = 1.0 / depth;
+      ++count;
+    }
+  }
+  return count;
+}
+
+KeyframeDecision DecideKeyframe(const FeatureManager& features,
+                                int64_t last_keyframe_id, int64_t new_frame_id,
+                                double focal_px,
+                                const KeyframeOptions& options) {
+  KeyframeDecision d;
+  d.mean_parallax_px =
+      focal_px *
+      features.MeanParallax(last_keyframe_id, new_frame_id, &d.common_features);
+  d.is_keyframe = d.common_features < options.min_tracked_features ||
+                  d.mean_parallax_px >= options.min_parallax_px;
+  return d;
+}
+
+}  // namespace vio
