@@ -81,10 +81,11 @@ Eigen::Vector3d FeatureManager::WorldPoint(const Landmark& landmark,
 void FeatureManager::RemoveFrame(int64_t frame_id, const CameraPoseFn& T_w_c) {
   for (auto it = landmarks_.begin(); it != landmarks_.end();) {
     Landmark& l = it->second;
-    const bool anchored_here = l.anchor().frame_id == frame_id;
-    // Only a triangulated landmark has a point to carry over.
-    Eigen::Vector3d p_w = Eigen::Vector3d::Zero();
-    if (anchored_here && l.triangulated) p_w = WorldPoint(l, T_w_c);
+    // Only a triangulated landmark anchored here has a point to carry over.
+    const bool carry =
+        l.triangulated && l.HasAnchor() && l.anchor().frame_id == frame_id;
+    const Eigen::Vector3d p_w =
+        carry ? WorldPoint(l, T_w_c) : Eigen::Vector3d::Zero();
     l.sightings.erase(std::remove_if(l.sightings.begin(), l.sightings.end(),
                                      [frame_id](const Sighting& s) {
                                        return s.frame_id == frame_id;
@@ -94,12 +95,18 @@ void FeatureManager::RemoveFrame(int64_t frame_id, const CameraPoseFn& T_w_c) {
       it = landmarks_.erase(it);
       continue;
     }
-    if (anchored_here && l.triangulated) {
+    if (carry) {
       // rho_new = 1 / z of the point in the new anchor camera.
-      const Sighting& a = l.anchor();
-      const double depth = (T_w_c(a.frame_id, a.camera).inverse() * p_w).z();
-      l.triangulated = std::isfinite(depth) && depth > 0.0;
-      l.inverse_depth = l.triangulated ? 1.0 / depth : 0.0;
+      l.triangulated = false;
+      l.inverse_depth = 0.0;
+      if (l.HasAnchor()) {
+        const Sighting& a = l.anchor();
+        const double depth = (T_w_c(a.frame_id, a.camera).inverse() * p_w).z();
+        if (std::isfinite(depth) && depth > 0.0) {
+          l.triangulated = true;
+          l.inverse_depth = 1.0 / depth;
+        }
+      }
     }
     ++it;
   }
@@ -110,13 +117,18 @@ int FeatureManager::TriangulateNew(const CameraPoseFn& T_w_c,
   int count = 0;
   std::vector<TriangulationView> views;
   for (auto& [id, l] : landmarks_) {
-    if (l.triangulated ||
+    const int anchor = l.AnchorIndex();
+    if (l.triangulated || anchor < 0 ||
         static_cast<int>(l.sightings.size()) < options.min_observations) {
       continue;
     }
+    // The anchor first: Triangulate checks its depth range on views[0].
     views.clear();
-    for (const Sighting& s : l.sightings) {
-      views.push_back({T_w_c(s.frame_id, s.camera), s.xy});
+    const Sighting& a = l.sightings[anchor];
+    views.push_back({T_w_c(a.frame_id, a.camera), a.xy});
+    for (int i = 0; i < static_cast<int>(l.sightings.size()); ++i) {
+      const Sighting& s = l.sightings[i];
+      if (i != anchor) views.push_back({T_w_c(s.frame_id, s.camera), s.xy});
     }
     Eigen::Vector3d p_w;
     double depth = 0.0;

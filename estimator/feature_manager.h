@@ -4,8 +4,9 @@
 // Landmark bookkeeping of the window: which frame and camera saw which
 // feature, where, and each landmark's inverse depth in its anchor camera.
 //
-// A landmark's anchor is always its first sighting (the oldest window frame
-// that saw it, camera 0 before camera 1). Its position in the anchor camera is
+// A landmark's anchor is always its first camera-0 sighting (the oldest window
+// frame whose camera 0 saw it; the visual factors anchor in camera 0). Its
+// position in the anchor camera is
 //   p_c = (x, y, 1) / rho,      rho: inverse depth [1/m], (x, y) the anchor's
 // normalised coordinate (DESIGN.md, landmark block). When the anchor frame
 // leaves the window the landmark is re-anchored on its next sighting, keeping
@@ -35,14 +36,20 @@ struct Sighting {
 
 struct Landmark {
   int64_t feature_id = -1;
-  std::vector<Sighting> sightings;  // by (frame_id, camera); [0] is the anchor
+  std::vector<Sighting> sightings;  // ordered by (frame_id, camera)
   bool triangulated = false;        // inverse_depth holds an estimate
   double inverse_depth = 0.0;       // in the anchor camera [1/m]
 
-  const Sighting& anchor() const { return sightings.front(); }
-  // True when some frame other than the anchor's, or the anchor frame's other
-  // camera, saw it too: the landmark constrains the problem.
-  bool HasConstraint() const { return sightings.size() >= 2; }
+  // Index of the first camera-0 sighting, -1 when camera 0 never saw it.
+  int AnchorIndex() const {
+    for (size_t i = 0; i < sightings.size(); ++i) {
+      if (sightings[i].camera == 0) return static_cast<int>(i);
+    }
+    return -1;
+  }
+  bool HasAnchor() const { return AnchorIndex() >= 0; }
+  // Requires HasAnchor().
+  const Sighting& anchor() const { return sightings[AnchorIndex()]; }
 };
 
 // What AddFrame did with a frame's observations.
@@ -75,18 +82,20 @@ class FeatureManager {
   double MeanParallax(int64_t frame_a, int64_t frame_b, int* common) const;
 
   // Removes every sighting in the frame. A triangulated landmark anchored
-  // there is re-anchored on its next sighting through the camera poses (which
-  // must still hold the leaving frame); one whose new depth is not positive
-  // falls back to untriangulated. A landmark with no sightings left is
-  // deleted.
+  // there is re-anchored on its next camera-0 sighting through the camera
+  // poses (which must still hold the leaving frame); one without such a
+  // sighting, or whose new depth is not positive, falls back to
+  // untriangulated. A landmark with no sightings left is deleted.
   void RemoveFrame(int64_t frame_id, const CameraPoseFn& T_w_c);
 
-  // Triangulates every untriangulated landmark from all its sightings.
-  // Returns how many succeeded.
+  // Triangulates every untriangulated landmark that has an anchor from all
+  // its sightings (the anchor as the reference view). Returns how many
+  // succeeded.
   int TriangulateNew(const CameraPoseFn& T_w_c,
                      const TriangulationOptions& options);
 
   // The landmark's position in the world from its inverse depth [m].
+  // Requires landmark.HasAnchor().
   static Eigen::Vector3d WorldPoint(const Landmark& landmark,
                                     const CameraPoseFn& T_w_c);
 

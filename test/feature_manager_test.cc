@@ -128,6 +128,27 @@ TEST(FeatureManager, ReanchoringKeepsTheWorldPoint) {
   EXPECT_EQ(fm.landmarks().at(0).sightings.size(), 1u);
 }
 
+TEST(FeatureManager, AnchorsInCameraZeroOnly) {
+  const Scene scene(5);
+  FeatureManager fm(2);
+  auto frame0 = scene.Observe(0, 0, 5, 2);
+  // Feature 0: camera 1 only in frame 0, both cameras in frame 1.
+  frame0.erase(frame0.begin());
+  fm.AddFrame(0, frame0);
+  fm.AddFrame(1, scene.Observe(1, 0, 5, 2));
+  const Landmark& l0 = fm.landmarks().at(0);
+  EXPECT_EQ(l0.sightings.front().camera, 1);
+  EXPECT_EQ(l0.anchor().frame_id, 1);
+  EXPECT_EQ(l0.anchor().camera, 0);
+  ASSERT_EQ(fm.TriangulateNew(scene.PoseFn(), TriangulationOptions()), 5);
+  EXPECT_NEAR(1.0 / l0.inverse_depth,
+              (scene.T_w_c(1, 0).inverse() * scene.point(0)).z(), 1e-8);
+  // With frame 1 gone, feature 0 has no camera-0 sighting left.
+  fm.RemoveFrame(1, scene.PoseFn());
+  EXPECT_FALSE(fm.landmarks().at(0).HasAnchor());
+  EXPECT_FALSE(fm.landmarks().at(0).triangulated);
+}
+
 TEST(DecideKeyframe, UsesParallaxInPixelsAndTrackedCount) {
   const Scene scene(60);
   FeatureManager fm(1);
