@@ -59,10 +59,9 @@ bool EstimatorOptions::Validate(std::string* message) const {
             "must be > triangulation.min_depth_m");
   c.AtLeast("triangulation.min_observations", triangulation.min_observations,
             2);
-  c.Positive("visual.pixel_sigma_px", visual.pixel_sigma_px);
-  c.Positive("visual.kernel_scale", visual.kernel_scale);
-  c.Positive("visual.outlier_threshold_px", visual.outlier_threshold_px);
-  c.AtLeast("visual.max_landmarks", visual.max_landmarks, 1);
+  c.Positive("landmarks.outlier_threshold_px",
+             landmarks.outlier_threshold_px);
+  c.AtLeast("landmarks.max_landmarks", landmarks.max_landmarks, 1);
   c.Positive("static_init.window_s", static_init.window_s);
   c.Require(std::isfinite(static_init.block_s) && static_init.block_s > 0.0 &&
                 static_init.block_s <= 0.5 * static_init.window_s,
@@ -70,6 +69,13 @@ bool EstimatorOptions::Validate(std::string* message) const {
             "must be in (0, static_init.window_s / 2]");
   c.Positive("static_init.max_acc_std", static_init.max_acc_std);
   c.Positive("static_init.max_gyr_std", static_init.max_gyr_std);
+  c.Positive("state_prior.position_m", state_prior.position_m);
+  c.Positive("state_prior.yaw_rad", state_prior.yaw_rad);
+  c.Positive("state_prior.tilt_rad", state_prior.tilt_rad);
+  c.Positive("state_prior.velocity_still", state_prior.velocity_still);
+  c.Positive("state_prior.velocity_moving", state_prior.velocity_moving);
+  c.Positive("state_prior.accel_bias", state_prior.accel_bias);
+  c.Positive("state_prior.gyro_bias", state_prior.gyro_bias);
   c.NonNegative("failure.min_tracked_landmarks", failure.min_tracked_landmarks);
   c.Positive("failure.max_accel_bias", failure.max_accel_bias);
   c.Positive("failure.max_gyro_bias", failure.max_gyro_bias);
@@ -79,31 +85,6 @@ bool EstimatorOptions::Validate(std::string* message) const {
   c.Positive("solver.max_time_s", solver.max_time_s);
   c.AtLeast("solver.num_threads", solver.num_threads, 1);
   return c.Done(message);
-}
-
-bool KernelFromString(const std::string& name, VisualOptions::Kernel* kernel) {
-  if (name == "none") {
-    *kernel = VisualOptions::Kernel::kNone;
-  } else if (name == "huber") {
-    *kernel = VisualOptions::Kernel::kHuber;
-  } else if (name == "cauchy") {
-    *kernel = VisualOptions::Kernel::kCauchy;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-const char* KernelName(VisualOptions::Kernel kernel) {
-  switch (kernel) {
-    case VisualOptions::Kernel::kNone:
-      return "none";
-    case VisualOptions::Kernel::kHuber:
-      return "huber";
-    case VisualOptions::Kernel::kCauchy:
-      return "cauchy";
-  }
-  return "none";
 }
 
 }  // namespace vio

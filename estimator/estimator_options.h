@@ -31,18 +31,14 @@ struct TriangulationOptions {
   int min_observations = 2;   // sightings (frames x cameras) needed [-]
 };
 
-// The visual residual's noise, its robust kernel and outlier removal.
-struct VisualOptions {
-  enum class Kernel { kNone, kHuber, kCauchy };
-  double pixel_sigma_px = 1.5;  // measurement noise [px]
-  Kernel kernel = Kernel::kHuber;
-  // Kernel scale on the whitened residual [-] (Huber 1.345 and Cauchy 2.3849
-  // give 95 % efficiency under Gaussian noise).
-  double kernel_scale = 1.345;
+// Which landmarks enter the problem and which leave it after the solve. (The
+// pixel noise and the robust kernel are the visual factors' own options,
+// factors/visual_factor_options.h.)
+struct LandmarkOptions {
   // After the solve, a landmark with a sighting whose reprojection error
   // exceeds this is removed [px].
   double outlier_threshold_px = 3.0;
-  // Landmarks per step at most, the best tracked first [-].
+  // Landmarks per step at most, those with the most sightings first [-].
   int max_landmarks = 300;
 };
 
@@ -59,6 +55,19 @@ struct StaticInitOptions {
   // The part of the mean specific force along gravity beyond g becomes the
   // accelerometer bias; otherwise the bias starts at zero.
   bool estimate_accel_bias = false;
+};
+
+// The prior that fixes the gauge (position, yaw) and the first speed-bias
+// estimate of a window that starts afresh: after the static initialisation,
+// after a reset, or when a marginalisation fails. Standard deviations.
+struct StatePriorOptions {
+  double position_m = 1e-3;       // [m]
+  double yaw_rad = 1e-3;          // about world z [rad]
+  double tilt_rad = 0.02;         // roll and pitch [rad]
+  double velocity_still = 0.02;   // after the static start [m/s]
+  double velocity_moving = 0.3;   // after a reset or failure [m/s]
+  double accel_bias = 0.2;        // [m/s^2]
+  double gyro_bias = 0.005;       // [rad/s]
 };
 
 // When the estimator gives up and starts again.
@@ -85,12 +94,17 @@ struct EstimatorOptions {
   int window_size = 10;             // keyframes in the window [-]
   double gravity_magnitude = 9.81;  // [m/s^2]
   bool estimate_extrinsics = false;
+  // Camera-IMU time offset t_d, t_imu = t_cam + t_d [s]: frame poses sit at
+  // t_cam + t_d. Estimated online (mono, camera-0 factors) when asked.
   bool estimate_time_offset = false;
-  double initial_time_offset_s = 0.0;  // t_imu = t_cam + t_d [s]
+  double initial_time_offset_s = 0.0;
+  // Stereo: use camera 1 too (the sequence must have it).
+  bool use_stereo = false;
   KeyframeOptions keyframe;
   TriangulationOptions triangulation;
-  VisualOptions visual;
+  LandmarkOptions landmarks;
   StaticInitOptions static_init;
+  StatePriorOptions state_prior;
   FailureOptions failure;
   SolverOptions solver;
 
@@ -98,10 +112,6 @@ struct EstimatorOptions {
   // starts with the offending field's name ("window_size must be >= 2 ...").
   bool Validate(std::string* message) const;
 };
-
-// Names as in YAML ("none", "huber", "cauchy"); false on an unknown name.
-bool KernelFromString(const std::string& name, VisualOptions::Kernel* kernel);
-const char* KernelName(VisualOptions::Kernel kernel);
 
 }  // namespace vio
 

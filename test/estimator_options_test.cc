@@ -31,9 +31,10 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
        },
        "triangulation.max_depth_m must be > triangulation.min_depth_m"},
       {[](EstimatorOptions* o) {
-         o->visual.pixel_sigma_px = std::numeric_limits<double>::quiet_NaN();
+         o->landmarks.outlier_threshold_px =
+             std::numeric_limits<double>::quiet_NaN();
        },
-       "visual.pixel_sigma_px must be > 0"},
+       "landmarks.outlier_threshold_px must be > 0"},
       {[](EstimatorOptions* o) { o->solver.num_threads = 0; },
        "solver.num_threads must be >= 1"},
       {[](EstimatorOptions* o) { o->failure.max_gyro_bias = 0.0; },
@@ -50,17 +51,6 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
         << "got '" << message << "', expected it to start with '" << c.expected
         << "'";
   }
-}
-
-TEST(EstimatorOptions, KernelNamesRoundTrip) {
-  for (auto k : {VisualOptions::Kernel::kNone, VisualOptions::Kernel::kHuber,
-                 VisualOptions::Kernel::kCauchy}) {
-    VisualOptions::Kernel back = VisualOptions::Kernel::kNone;
-    ASSERT_TRUE(KernelFromString(KernelName(k), &back));
-    EXPECT_EQ(back, k);
-  }
-  VisualOptions::Kernel k;
-  EXPECT_FALSE(KernelFromString("tukey", &k));
 }
 
 }  // namespace
