@@ -35,8 +35,8 @@ struct TriangulationOptions {
 // pixel noise and the robust kernel are the visual factors' own options,
 // factors/visual_factor_options.h.)
 struct LandmarkOptions {
-  // After the solve, a landmark with a sighting whose reprojection error
-  // exceeds this is removed [px].
+  // After the solve, a landmark whose RMS reprojection error over its
+  // sightings exceeds this is removed [px].
   double outlier_threshold_px = 3.0;
   // Landmarks per step at most, those with the most sightings first [-].
   int max_landmarks = 300;

@@ -164,15 +164,29 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {
 std::vector<int64_t> WindowProblem::Outliers(double threshold_px) const {
   std::vector<int64_t> out;
   // A whitened residual r = (focal / sigma) e has |e| focal = |r| sigma px.
+  // The test is on the RMS over the landmark's residuals (VINS-Mono uses the
+  // mean): a per-sighting 3 px test would, with 1 px noise, throw away ~1 %
+  // of good sightings and so ~10 % of good landmarks at every step.
   const double max_norm = threshold_px / settings_.visual.sigma_px;
-  for (const Residual& r : residuals_) {
+  double sum_sq = 0.0;
+  int n = 0;
+  bool failed = false;
+  for (size_t k = 0; k < residuals_.size(); ++k) {
+    const Residual& r = residuals_[k];
     if (r.feature_id < 0) continue;
-    if (!out.empty() && out.back() == r.feature_id) continue;
     Eigen::Vector2d e;
     const bool ok = r.cost->Evaluate(r.blocks.data(), e.data(), nullptr);
-    if (!ok || !e.allFinite() || e.norm() > max_norm) {
-      out.push_back(r.feature_id);
-    }
+    failed = failed || !ok || !e.allFinite();
+    sum_sq += failed ? 0.0 : e.squaredNorm();
+    ++n;
+    // A landmark's residuals are consecutive.
+    const bool last = k + 1 == residuals_.size() ||
+                      residuals_[k + 1].feature_id != r.feature_id;
+    if (!last) continue;
+    if (failed || std::sqrt(sum_sq / n) > max_norm) out.push_back(r.feature_id);
+    sum_sq = 0.0;
+    n = 0;
+    failed = false;
   }
   return out;
 }

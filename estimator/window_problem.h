@@ -65,8 +65,8 @@ class WindowProblem {
   // Solves with the options (threads as given).
   ceres::Solver::Summary Solve(const SolverOptions& options);
 
-  // Features with a sighting whose reprojection error at the current values
-  // exceeds threshold_px [px], or that failed to evaluate.
+  // Features whose RMS reprojection error over their residuals at the
+  // current values exceeds threshold_px [px], or that failed to evaluate.
   std::vector<int64_t> Outliers(double threshold_px) const;
 
   // The marginalisation of the oldest window frame: its IMU factor, the prior
