@@ -9,15 +9,25 @@ namespace {
 template <typename T>
 const char* TypeName();
 template <>
-const char* TypeName<double>() { return "a number"; }
+const char* TypeName<double>() {
+  return "a number";
+}
 template <>
-const char* TypeName<int>() { return "an integer"; }
+const char* TypeName<int>() {
+  return "an integer";
+}
 template <>
-const char* TypeName<int64_t>() { return "an integer"; }
+const char* TypeName<int64_t>() {
+  return "an integer";
+}
 template <>
-const char* TypeName<bool>() { return "true or false"; }
+const char* TypeName<bool>() {
+  return "true or false";
+}
 template <>
-const char* TypeName<std::string>() { return "a string"; }
+const char* TypeName<std::string>() {
+  return "a string";
+}
 
 std::string Shown(const YAML::Node& n) {
   std::ostringstream out;
@@ -37,7 +47,8 @@ YamlNode YamlNode::LoadFile(const std::string& path) {
     throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": " +
                       e.msg);
   }
-  if (!root.IsMap()) throw ConfigError(path + ": the top level must be a mapping");
+  if (!root.IsMap())
+    throw ConfigError(path + ": the top level must be a mapping");
   return YamlNode(root, path, "");
 }
 
@@ -50,7 +61,8 @@ YamlNode YamlNode::LoadString(const std::string& text,
     throw ConfigError(name + ":" + std::to_string(e.mark.line + 1) + ": " +
                       e.msg);
   }
-  if (!root.IsMap()) throw ConfigError(name + ": the top level must be a mapping");
+  if (!root.IsMap())
+    throw ConfigError(name + ": the top level must be a mapping");
   return YamlNode(root, name, "");
 }
 

@@ -52,7 +52,9 @@ class YamlNode {
 
  private:
   YamlNode(YAML::Node node, std::string file, std::string path)
-      : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
+      : node_(std::move(node)),
+        file_(std::move(file)),
+        path_(std::move(path)) {}
 
   YAML::Node Required(const std::string& key) const;
 

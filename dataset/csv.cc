@@ -79,8 +79,7 @@ int64_t CsvReader::Int64(size_t i) const {
   errno = 0;
   const long long v = std::strtoll(f.c_str(), &end, 10);
   if (f.empty() || *end != '\0' || errno == ERANGE) {
-    Fail("field " + std::to_string(i + 1) + " is not an integer ('" + f +
-         "')");
+    Fail("field " + std::to_string(i + 1) + " is not an integer ('" + f + "')");
   }
   return static_cast<int64_t>(v);
 }

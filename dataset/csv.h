@@ -36,7 +36,8 @@ class CsvReader {
   int line() const { return line_; }
   const std::string& path() const { return path_; }
 
-  // Throws unless the line has at least `n` fields ("expected 7 fields, got 5").
+  // Throws unless the line has at least `n` fields ("expected 7 fields, got
+  // 5").
   void ExpectAtLeast(size_t n) const;
   // The i-th field (0-based) as a number; throws naming file, line and field.
   double Double(size_t i) const;

@@ -42,7 +42,8 @@ int64_t SecondsToNs(const CsvReader& csv, const std::string& text) {
   const bool negative = !whole.empty() && whole[0] == '-';
   try {
     size_t used_w = 0, used_f = 0;
-    const long long w = whole.empty() || whole == "-" ? 0 : std::stoll(whole, &used_w);
+    const long long w =
+        whole.empty() || whole == "-" ? 0 : std::stoll(whole, &used_w);
     const long long f = std::stoll(frac, &used_f);
     if ((!whole.empty() && whole != "-" && used_w != whole.size()) ||
         used_f != frac.size()) {
@@ -151,12 +152,10 @@ void WriteStateCsv(const std::string& path,
          "bg_z [rad/s],ba_x [m/s^2],ba_y [m/s^2],ba_z [m/s^2]\n";
   for (const StampedState& s : states) {
     out << s.t_ns;
-    const double values[] = {s.p_w_b.x(), s.p_w_b.y(), s.p_w_b.z(),
-                             s.q_w_b.w(), s.q_w_b.x(), s.q_w_b.y(),
-                             s.q_w_b.z(), s.v_w.x(),   s.v_w.y(),
-                             s.v_w.z(),   s.b_g.x(),   s.b_g.y(),
-                             s.b_g.z(),   s.b_a.x(),   s.b_a.y(),
-                             s.b_a.z()};
+    const double values[] = {s.p_w_b.x(), s.p_w_b.y(), s.p_w_b.z(), s.q_w_b.w(),
+                             s.q_w_b.x(), s.q_w_b.y(), s.q_w_b.z(), s.v_w.x(),
+                             s.v_w.y(),   s.v_w.z(),   s.b_g.x(),   s.b_g.y(),
+                             s.b_g.z(),   s.b_a.x(),   s.b_a.y(),   s.b_a.z()};
     for (double v : values) out << ',' << v;
     out << '\n';
   }

@@ -2,8 +2,8 @@
 #define VIO_DATASET_TRAJECTORY_IO_H_
 
 // Trajectory files.
-//   TUM:   "t x y z qx qy qz qw" per line, t in seconds (decimal), pose of B in W.
-//   EuRoC ground truth (state_groundtruth_estimate0/data.csv):
+//   TUM:   "t x y z qx qy qz qw" per line, t in seconds (decimal), pose of B in
+//   W. EuRoC ground truth (state_groundtruth_estimate0/data.csv):
 //          t[ns], p(3), q(w, x, y, z), v(3), b_g(3), b_a(3)
 //   State CSV (our estimator output, same column order as EuRoC's ground truth
 //          so every EuRoC tool reads it): t[ns], p, q(w,x,y,z), v, b_g, b_a.

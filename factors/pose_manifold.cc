@@ -56,8 +56,9 @@ bool PoseManifold::Minus(const double* y, const double* x,
 PoseMinusJacobian PoseManifold::MinusJacobianAt(const double* x) {
   // d Log(q_x^-1 (x) q_y) / d q_y at q_y = q_x: near identity Log(p) ~ 2 p.vec,
   // so the derivative is twice the first three rows of L(q_x^-1).
-  // With L(q)[:, :3] = [w I + [v]x; -v^T] and L(q^-1)[:3, :] = [w I - [v]x, -v],
-  // their product is (w^2 + |v|^2) I = I: MinusJacobian * PlusJacobian = I.
+  // With L(q)[:, :3] = [w I + [v]x; -v^T] and L(q^-1)[:3, :] = [w I - [v]x,
+  // -v], their product is (w^2 + |v|^2) I = I: MinusJacobian * PlusJacobian =
+  // I.
   PoseMinusJacobian J = PoseMinusJacobian::Zero();
   J.topLeftCorner<3, 3>().setIdentity();
   J.bottomRightCorner<3, 4>() =

@@ -2,9 +2,9 @@
 #define VIO_FACTORS_POSE_MANIFOLD_H_
 
 // The manifold of pose and extrinsic parameter blocks (DESIGN.md):
-//   ambient x = [t (3), q (x, y, z, w)] (7),  tangent d = [dt (3), dtheta (3)] (6)
-//   x (+) d   = [t + dt,  q (x) Exp(dtheta)]      (right perturbation, full angle)
-//   y (-) x   = [t_y - t_x,  Log(q_x^-1 (x) q_y)]
+//   ambient x = [t (3), q (x, y, z, w)] (7),  tangent d = [dt (3), dtheta (3)]
+//   (6) x (+) d   = [t + dt,  q (x) Exp(dtheta)]      (right perturbation, full
+//   angle) y (-) x   = [t_y - t_x,  Log(q_x^-1 (x) q_y)]
 //
 // How the factors' Jacobians fit together with it. Ceres multiplies the
 // Jacobian a cost function returns for a block (r x 7, "ambient") by

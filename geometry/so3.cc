@@ -37,9 +37,8 @@ Eigen::Matrix3d Exp(const Eigen::Vector3d& phi) {
 
 Eigen::Vector3d Log(const Eigen::Quaterniond& q_in) {
   // Take the representative with w >= 0 so the angle is in [0, pi].
-  const Eigen::Quaterniond q = q_in.w() < 0.0
-                                   ? Eigen::Quaterniond(-q_in.coeffs())
-                                   : q_in;
+  const Eigen::Quaterniond q =
+      q_in.w() < 0.0 ? Eigen::Quaterniond(-q_in.coeffs()) : q_in;
   const Eigen::Vector3d v = q.vec();
   const double n = v.norm();
   const double w = q.w();
@@ -81,8 +80,7 @@ Eigen::Matrix4d QuaternionLeftMatrix(const Eigen::Quaterniond& q) {
   // q (x) p with q = (v, w), p = (u, s): vec = w u + s v + v x u,
   // scalar = w s - v.u.
   Eigen::Matrix4d L;
-  L.topLeftCorner<3, 3>() =
-      q.w() * Eigen::Matrix3d::Identity() + Skew(q.vec());
+  L.topLeftCorner<3, 3>() = q.w() * Eigen::Matrix3d::Identity() + Skew(q.vec());
   L.topRightCorner<3, 1>() = q.vec();
   L.bottomLeftCorner<1, 3>() = -q.vec().transpose();
   L(3, 3) = q.w();
@@ -92,8 +90,7 @@ Eigen::Matrix4d QuaternionLeftMatrix(const Eigen::Quaterniond& q) {
 Eigen::Matrix4d QuaternionRightMatrix(const Eigen::Quaterniond& p) {
   // Same product read as a function of q: vec = s v + w u - u x v.
   Eigen::Matrix4d R;
-  R.topLeftCorner<3, 3>() =
-      p.w() * Eigen::Matrix3d::Identity() - Skew(p.vec());
+  R.topLeftCorner<3, 3>() = p.w() * Eigen::Matrix3d::Identity() - Skew(p.vec());
   R.topRightCorner<3, 1>() = p.vec();
   R.bottomLeftCorner<1, 3>() = -p.vec().transpose();
   R(3, 3) = p.w();

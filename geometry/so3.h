@@ -9,8 +9,9 @@
 //   R (+) dtheta = R * Exp(dtheta),   q (+) dtheta = q (x) Exp(dtheta).
 //
 // References: Forster et al., "On-Manifold Preintegration for Real-Time
-// Visual-Inertial Odometry", T-RO 2017, eqs. (1)-(8) (Exp, Log, right Jacobian);
-// Sola, "Quaternion kinematics for the error-state Kalman filter", 2017, sec. 3.
+// Visual-Inertial Odometry", T-RO 2017, eqs. (1)-(8) (Exp, Log, right
+// Jacobian); Sola, "Quaternion kinematics for the error-state Kalman filter",
+// 2017, sec. 3.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -13,7 +13,7 @@ namespace vio {
 
 // One IMU sample in the body (IMU) frame B.
 struct ImuSample {
-  int64_t t_ns = 0;                             // stamp [ns]
+  int64_t t_ns = 0;                               // stamp [ns]
   Eigen::Vector3d acc = Eigen::Vector3d::Zero();  // specific force [m/s^2]
   Eigen::Vector3d gyr = Eigen::Vector3d::Zero();  // angular rate [rad/s]
 };
@@ -22,10 +22,10 @@ struct ImuSample {
 // For a step of length dt [s]: white noise sigma / sqrt(dt), bias random walk
 // sigma * sqrt(dt). Defaults: EuRoC's ADIS16448 (imu0/sensor.yaml).
 struct ImuNoise {
-  double accelerometer_noise_density = 2.0e-3;   // [m/s^2/sqrt(Hz)]
-  double gyroscope_noise_density = 1.6968e-4;    // [rad/s/sqrt(Hz)]
-  double accelerometer_random_walk = 3.0e-3;     // [m/s^3/sqrt(Hz)]
-  double gyroscope_random_walk = 1.9393e-5;      // [rad/s^2/sqrt(Hz)]
+  double accelerometer_noise_density = 2.0e-3;  // [m/s^2/sqrt(Hz)]
+  double gyroscope_noise_density = 1.6968e-4;   // [rad/s/sqrt(Hz)]
+  double accelerometer_random_walk = 3.0e-3;    // [m/s^3/sqrt(Hz)]
+  double gyroscope_random_walk = 1.9393e-5;     // [rad/s^2/sqrt(Hz)]
 
   // True when every density is finite and > 0; otherwise false with a message
   // that starts with the offending field's name.

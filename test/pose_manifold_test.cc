@@ -21,7 +21,8 @@ Eigen::Matrix<double, 7, 1> RandomPose(std::mt19937& rng, double angle) {
 }
 
 TEST(PoseManifold, InvariantsHold) {
-  // The Ceres macro names its helpers (Vector, XPlusZeroIsXAt, ...) unqualified.
+  // The Ceres macro names its helpers (Vector, XPlusZeroIsXAt, ...)
+  // unqualified.
   using namespace ceres;  // NOLINT(build/namespaces)
   std::mt19937 rng(42);
   const PoseManifold manifold;
@@ -60,8 +61,8 @@ TEST(PoseManifold, MinusJacobianLeftInvertsPlusJacobian) {
     const Eigen::Matrix<double, 6, 6> product =
         PoseManifold::MinusJacobianAt(x.data()) *
         PoseManifold::PlusJacobianAt(x.data());
-    EXPECT_TRUE(product.isApprox(Eigen::Matrix<double, 6, 6>::Identity(),
-                                 1e-14));
+    EXPECT_TRUE(
+        product.isApprox(Eigen::Matrix<double, 6, 6>::Identity(), 1e-14));
   }
 }
 

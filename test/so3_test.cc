@@ -10,9 +10,9 @@ namespace {
 
 // Angles that probe every branch: zero, below and above kSmallAngle, large,
 // and close to pi.
-const double kAngles[] = {0.0, 1e-12, 1e-8, 0.5 * kSmallAngle,
-                          2.0 * kSmallAngle, 1e-3, 0.3, 1.5, 3.0,
-                          M_PI - 1e-6};
+const double kAngles[] = {
+    0.0, 1e-12, 1e-8, 0.5 * kSmallAngle, 2.0 * kSmallAngle, 1e-3,
+    0.3, 1.5,   3.0,  M_PI - 1e-6};
 
 Eigen::Vector3d RandomAxis(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);

@@ -2,6 +2,8 @@
 // differences taken through the manifolds' Plus, at many random realistic
 // linearisation points. Exit status 0 only when every row passes.
 
+#include "factors/check/jacobian_check.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <exception>
@@ -14,7 +16,6 @@
 #include <vector>
 
 #include "factors/check/factor_cases.h"
-#include "factors/check/jacobian_check.h"
 
 namespace {
 
@@ -32,15 +33,18 @@ constexpr char kUsage[] =
     "\n"
     "Compares each factor's analytic Jacobians, mapped to the tangent space\n"
     "(J_ambient * PlusJacobian), with central differences obtained by\n"
-    "perturbing every parameter block through its manifold's Plus. One row per\n"
-    "factor and parameter block: the worst absolute and relative error over all\n"
+    "perturbing every parameter block through its manifold's Plus. One row "
+    "per\n"
+    "factor and parameter block: the worst absolute and relative error over "
+    "all\n"
     "trials (relative to the block's largest entry) and PASS or FAIL against\n"
     "the factor's tolerance. Exit status 0 only when every row passes.\n"
     "\n"
     "  --seed N     seed of the random linearisation points (default 42)\n"
     "  --trials N   random points per factor (default 200)\n"
     "  --factor N   check only the factor named N (see --list)\n"
-    "  --step H     central-difference step in the tangent space (default 1e-6)\n"
+    "  --step H     central-difference step in the tangent space (default "
+    "1e-6)\n"
     "  --list       list the factors and exit\n"
     "  --help       this text\n";
 
@@ -147,8 +151,8 @@ int main(int argc, char** argv) {
               << " random states per factor, step " << args.step << "\n\n";
     std::cout << std::left << std::setw(22) << "factor" << std::setw(16)
               << "block" << std::right << std::setw(14) << "max abs err"
-              << std::setw(14) << "max rel err" << std::setw(11)
-              << "tolerance" << "  result\n";
+              << std::setw(14) << "max rel err" << std::setw(11) << "tolerance"
+              << "  result\n";
     bool all_pass = true;
     for (const Row& r : rows) {
       all_pass = all_pass && r.Pass();
@@ -162,8 +166,8 @@ int main(int argc, char** argv) {
       }
       std::cout << "\n" << std::defaultfloat;
     }
-    std::cout << "\n" << (all_pass ? "all Jacobians match" : "MISMATCH")
-              << "\n";
+    std::cout << "\n"
+              << (all_pass ? "all Jacobians match" : "MISMATCH") << "\n";
     return all_pass ? 0 : 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

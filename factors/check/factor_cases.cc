@@ -2,8 +2,6 @@
 
 namespace vio {
 
-std::vector<FactorCase> AllFactorCases() {
-  return {};
-}
+std::vector<FactorCase> AllFactorCases() { return {}; }
 
 }  // namespace vio

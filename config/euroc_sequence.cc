@@ -1,0 +1,17 @@
+#include "config/euroc_sequence.h"
+
+namespace vio {
+
+EurocSequence LoadEurocSequence(const std::string& folder) {
+  EurocSequence sequence;
+  sequence.data = ReadEurocFolder(folder);
+  const std::string mav0 = JoinPath(folder, "mav0");
+  sequence.imu = ReadEurocImuYaml(JoinPath(mav0, "imu0/sensor.yaml"));
+  for (const EurocCamera& camera : sequence.data.cameras) {
+    sequence.cameras.push_back(
+        ReadEurocCameraYaml(JoinPath(camera.folder, "sensor.yaml")));
+  }
+  return sequence;
+}
+
+}  // namespace vio

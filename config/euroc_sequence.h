@@ -1,0 +1,32 @@
+#ifndef VIO_CONFIG_EUROC_SEQUENCE_H_
+#define VIO_CONFIG_EUROC_SEQUENCE_H_
+
+// The one call that gives tools and tests a complete EuRoC-layout sequence:
+// the data files (dataset/euroc_reader.h) and the calibrations of every
+// sensor present (config/euroc_sensor.h). It works alike for a recorded
+// sequence and for one written by vio_sim.
+
+#include <string>
+#include <vector>
+
+#include "config/euroc_sensor.h"
+#include "dataset/euroc_reader.h"
+#include "geometry/camera_model.h"
+
+namespace vio {
+
+struct EurocSequence {
+  EurocData data;
+  // cameras[i] is the calibration of data.cameras[i] (camN/sensor.yaml).
+  std::vector<CameraCalibration> cameras;
+  EurocImuSensor imu;  // imu0/sensor.yaml
+};
+
+// Reads <folder>/mav0/... Throws DatasetError for the data files and
+// ConfigError for a sensor.yaml (missing, malformed, lacking a key), each
+// naming the file and the line or key.
+EurocSequence LoadEurocSequence(const std::string& folder);
+
+}  // namespace vio
+
+#endif  // VIO_CONFIG_EUROC_SEQUENCE_H_

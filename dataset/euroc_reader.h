@@ -1,0 +1,96 @@
+#ifndef VIO_DATASET_EUROC_READER_H_
+#define VIO_DATASET_EUROC_READER_H_
+
+// Reads the data files of a sequence folder in the EuRoC ASL layout:
+//
+//   <folder>/mav0/imu0/data.csv                      required
+//   <folder>/mav0/camN/data.csv + data/*.png          images, or
+//   <folder>/mav0/camN/features.csv                   feature observations
+//   <folder>/mav0/state_groundtruth_estimate0/data.csv  optional
+//
+// Camera folders are cam0, cam1, ... (consecutive from cam0; none is fine: a
+// sequence may carry only IMU and ground truth). The sensor.yaml files are
+// not read here (yaml-cpp lives in config/): config/euroc_sequence.h reads the
+// whole sequence, calibrations included.
+//
+// Stamps are kept exactly as the files hold them (int64_t nanoseconds).
+// Bad input is a DatasetError naming the file and the line; the one tolerated
+// fault is an image that data.csv lists but that does not exist: it is skipped
+// and counted (EurocCamera::missing_images). Non-finite numbers (nan, inf) in
+// any file are errors naming the line, IMU samples included: a gap in the IMU
+// stream would silently bend the preintegration, so it is never papered over.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dataset/trajectory.h"
+#include "geometry/feature_observation.h"
+#include "preintegration/imu_types.h"
+
+namespace vio {
+
+// One image listed in camN/data.csv whose file exists.
+struct ImageEntry {
+  int64_t t_ns = 0;  // camera stamp [ns]
+  std::string path;  // the image file: <camN>/data/<filename>
+};
+
+// What one camera folder holds: images, feature observations, or both.
+struct EurocCamera {
+  int index = 0;                   // N of camN
+  std::string folder;              // <folder>/mav0/camN
+  bool has_images = false;         // data.csv was present
+  bool has_features = false;       // features.csv was present
+  std::vector<ImageEntry> images;  // listed and existing, in stamp order
+  int missing_images = 0;          // listed but absent: skipped
+  // One frame per distinct stamp of features.csv, in stamp order; only `uv`,
+  // `feature_id` and `camera` (= index) are set: xy and velocity are the
+  // frontend's job (frontend/observation_builder.h).
+  std::vector<FeatureFrame> feature_frames;
+};
+
+// The data of a whole sequence.
+struct EurocData {
+  std::string folder;          // the sequence folder (the one holding mav0/)
+  std::vector<ImuSample> imu;  // strictly increasing stamps
+  std::vector<EurocCamera> cameras;        // cam0, cam1, ... as present
+  std::vector<StampedState> ground_truth;  // empty when absent
+  int64_t start_ns = 0;  // the earliest stamp of any stream [ns]
+
+  // Seconds from the sequence start to `t_ns`, computed from the integer
+  // difference so no precision is lost.
+  double SecondsSinceStart(int64_t t_ns) const {
+    return static_cast<double>(t_ns - start_ns) * 1e-9;
+  }
+};
+
+// Reads everything listed above. Throws DatasetError when the folder, mav0/
+// or imu0/data.csv is missing, when a camN folder holds neither data.csv nor
+// features.csv, and for any bad line of any file.
+EurocData ReadEurocFolder(const std::string& folder);
+
+// The feature frames of every camera that has a features.csv, merged into one
+// frame per distinct stamp (a stereo pair shares one), in stamp order; within
+// a frame, cam0's observations come first.
+std::vector<FeatureFrame> MergedFeatureFrames(const EurocData& data);
+
+// The single files, for callers that need only one of them. Each throws
+// DatasetError naming the file (and line) when it is missing or malformed.
+
+// imu0/data.csv: t [ns], w_x, w_y, w_z [rad/s], a_x, a_y, a_z [m/s^2]; stamps
+// strictly increasing; at least one sample.
+std::vector<ImuSample> ReadEurocImu(const std::string& path);
+
+// camN/data.csv: t [ns], filename; stamps strictly increasing. Files missing
+// from `image_folder` are skipped and counted in *missing.
+std::vector<ImageEntry> ReadEurocImageList(const std::string& path,
+                                           const std::string& image_folder,
+                                           int* missing);
+
+// The path of a file or folder below another: "a" + "b" -> "a/b".
+std::string JoinPath(const std::string& folder, const std::string& name);
+
+}  // namespace vio
+
+#endif  // VIO_DATASET_EUROC_READER_H_
