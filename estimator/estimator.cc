@@ -54,8 +54,8 @@ Estimator::Estimator(const EstimatorOptions& options,
           "use_stereo needs 2 cameras");
   window_.num_cameras = options.use_stereo ? 2 : 1;
   for (int c = 0; c < window_.num_cameras; ++c) {
-    Require(cameras[c].focal_px > 0.0 && std::isfinite(cameras[c].focal_px),
-            "", "camera focal length must be > 0");
+    Require(cameras[c].focal_px > 0.0 && std::isfinite(cameras[c].focal_px), "",
+            "camera focal length must be > 0");
     window_.extrinsics[c] = PoseArray(cameras[c].T_b_c);
   }
 }
@@ -226,8 +226,8 @@ bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   const Eigen::Vector3d g_w(0.0, 0.0, -options_.gravity_magnitude);
   const double T = f->imu->sum_dt();
   const ImuDelta& d = f->imu->delta();
-  f->p_w_b() = T_w_i.translation() + v_i * T + 0.5 * g_w * T * T +
-               T_w_i.linear() * d.p;
+  f->p_w_b() =
+      T_w_i.translation() + v_i * T + 0.5 * g_w * T * T + T_w_i.linear() * d.p;
   f->v_w() = v_i + g_w * T + T_w_i.linear() * d.v;
   f->q_w_b() =
       (Eigen::Quaterniond(prev.pose.data() + kPoseQ) * d.q).normalized();
@@ -238,8 +238,8 @@ bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   summary_.observations_skipped += stats.skipped;
   if (stats.added == 0) ++summary_.frames_without_observations;
   const KeyframeDecision decision =
-      DecideKeyframe(features_, last_keyframe_id_, f->id,
-                     cameras_[0].focal_px, options_.keyframe);
+      DecideKeyframe(features_, last_keyframe_id_, f->id, cameras_[0].focal_px,
+                     options_.keyframe);
   // A frame without observations adds nothing to keep.
   f->keyframe = stats.added > 0 && decision.is_keyframe;
   window_.frames.push_back(std::move(f));
@@ -285,9 +285,9 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
     Reset(frame.t_ns, failure);
     // Restart from the prediction, or from the last good output when even
     // the prediction is not finite.
-    const EstimatorOutput restart = Finite(predicted) ? predicted : last_output_;
-    StartWindow(frame, t_imu_ns, restart,
-                options_.state_prior.velocity_moving);
+    const EstimatorOutput restart =
+        Finite(predicted) ? predicted : last_output_;
+    StartWindow(frame, t_imu_ns, restart, options_.state_prior.velocity_moving);
     *out = OutputOf(*window_.frames.back(), frame.t_ns);
     return true;
   }
@@ -330,8 +330,7 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
                                   const std::vector<int64_t>& outliers) {
   const auto start = std::chrono::steady_clock::now();
   const std::set<int64_t> excluded(outliers.begin(), outliers.end());
-  const MarginalizationProblem m =
-      problem.OldestFrameMarginalization(excluded);
+  const MarginalizationProblem m = problem.OldestFrameMarginalization(excluded);
   const MarginalizationResult result = Marginalize(m);
   ++summary_.marginalizations;
   if (result.ok()) {

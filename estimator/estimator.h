@@ -51,15 +51,15 @@ struct EstimatorCamera {
 
 // The estimate after one frame.
 struct EstimatorOutput {
-  int64_t t_ns = 0;           // the frame's camera stamp [ns]
-  bool processed = false;     // false: the frame was skipped (see summary)
-  bool initialized = false;   // false: the state below is not an estimate
+  int64_t t_ns = 0;          // the frame's camera stamp [ns]
+  bool processed = false;    // false: the frame was skipped (see summary)
+  bool initialized = false;  // false: the state below is not an estimate
   bool keyframe = false;
-  Eigen::Vector3d p_w_b = Eigen::Vector3d::Zero();             // [m]
+  Eigen::Vector3d p_w_b = Eigen::Vector3d::Zero();  // [m]
   Eigen::Quaterniond q_w_b = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d v_w = Eigen::Vector3d::Zero();               // [m/s]
-  Eigen::Vector3d b_a = Eigen::Vector3d::Zero();               // [m/s^2]
-  Eigen::Vector3d b_g = Eigen::Vector3d::Zero();               // [rad/s]
+  Eigen::Vector3d v_w = Eigen::Vector3d::Zero();  // [m/s]
+  Eigen::Vector3d b_a = Eigen::Vector3d::Zero();  // [m/s^2]
+  Eigen::Vector3d b_g = Eigen::Vector3d::Zero();  // [rad/s]
 };
 
 struct ResetEvent {
@@ -74,19 +74,19 @@ struct EstimatorSummary {
   int64_t keyframes = 0;
   int64_t resets = 0;
   std::vector<ResetEvent> reset_log;
-  int64_t imu_samples = 0;             // accepted
-  int64_t imu_non_finite = 0;          // skipped
-  int64_t imu_out_of_order = 0;        // stamp not after the last: skipped
-  int64_t frames_out_of_order = 0;     // stamp not after the last: skipped
-  int64_t frames_without_imu = 0;      // IMU does not cover it: skipped
-  int64_t frames_before_init = 0;      // before the static start was seen
+  int64_t imu_samples = 0;                  // accepted
+  int64_t imu_non_finite = 0;               // skipped
+  int64_t imu_out_of_order = 0;             // stamp not after the last: skipped
+  int64_t frames_out_of_order = 0;          // stamp not after the last: skipped
+  int64_t frames_without_imu = 0;           // IMU does not cover it: skipped
+  int64_t frames_before_init = 0;           // before the static start was seen
   int64_t frames_without_observations = 0;  // processed on the IMU alone
-  int64_t observations_skipped = 0;    // non-finite, unknown camera, ...
+  int64_t observations_skipped = 0;         // non-finite, unknown camera, ...
   int64_t landmarks_triangulated = 0;
   int64_t outlier_landmarks_removed = 0;
   int64_t marginalizations = 0;
-  int64_t marginalization_failures = 0;  // prior replaced by a fresh one
-  int64_t solver_failures = 0;           // Ceres reported failure
+  int64_t marginalization_failures = 0;        // prior replaced by a fresh one
+  int64_t solver_failures = 0;                 // Ceres reported failure
   std::vector<double> solver_time_s;           // Ceres, per step [s]
   std::vector<double> marginalization_time_s;  // per marginalisation [s]
   std::vector<int> landmarks_per_step;
@@ -97,9 +97,8 @@ class Estimator {
   // Throws std::invalid_argument when an options struct does not validate,
   // when cameras has not 1 or 2 entries, or when options.use_stereo asks for
   // a second camera that is not there.
-  Estimator(const EstimatorOptions& options,
-            const VisualFactorOptions& visual, const ImuNoise& noise,
-            const PreintegrationOptions& preintegration,
+  Estimator(const EstimatorOptions& options, const VisualFactorOptions& visual,
+            const ImuNoise& noise, const PreintegrationOptions& preintegration,
             const std::vector<EstimatorCamera>& cameras);
   ~Estimator();
 

@@ -59,8 +59,7 @@ bool EstimatorOptions::Validate(std::string* message) const {
             "must be > triangulation.min_depth_m");
   c.AtLeast("triangulation.min_observations", triangulation.min_observations,
             2);
-  c.Positive("landmarks.outlier_threshold_px",
-             landmarks.outlier_threshold_px);
+  c.Positive("landmarks.outlier_threshold_px", landmarks.outlier_threshold_px);
   c.AtLeast("landmarks.max_landmarks", landmarks.max_landmarks, 1);
   c.Positive("static_init.window_s", static_init.window_s);
   c.Require(std::isfinite(static_init.block_s) && static_init.block_s > 0.0 &&

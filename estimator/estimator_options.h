@@ -61,13 +61,13 @@ struct StaticInitOptions {
 // estimate of a window that starts afresh: after the static initialisation,
 // after a reset, or when a marginalisation fails. Standard deviations.
 struct StatePriorOptions {
-  double position_m = 1e-3;       // [m]
-  double yaw_rad = 1e-3;          // about world z [rad]
-  double tilt_rad = 0.02;         // roll and pitch [rad]
-  double velocity_still = 0.02;   // after the static start [m/s]
-  double velocity_moving = 0.3;   // after a reset or failure [m/s]
-  double accel_bias = 0.2;        // [m/s^2]
-  double gyro_bias = 0.005;       // [rad/s]
+  double position_m = 1e-3;      // [m]
+  double yaw_rad = 1e-3;         // about world z [rad]
+  double tilt_rad = 0.02;        // roll and pitch [rad]
+  double velocity_still = 0.02;  // after the static start [m/s]
+  double velocity_moving = 0.3;  // after a reset or failure [m/s]
+  double accel_bias = 0.2;       // [m/s^2]
+  double gyro_bias = 0.005;      // [rad/s]
 };
 
 // When the estimator gives up and starts again.

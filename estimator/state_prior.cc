@@ -17,8 +17,7 @@ std::unique_ptr<MarginalizationPrior> MakeStatePrior(
       q_w_b.normalized().conjugate() * Eigen::Vector3d::UnitZ();
   const Eigen::Matrix3d uu = u * u.transpose();
   const Eigen::Matrix3d info_rot =
-      (Eigen::Matrix3d::Identity() - uu) /
-          (sigmas.tilt_rad * sigmas.tilt_rad) +
+      (Eigen::Matrix3d::Identity() - uu) / (sigmas.tilt_rad * sigmas.tilt_rad) +
       uu / (sigmas.yaw_rad * sigmas.yaw_rad);
   J.block<3, 3>(3, 3) = info_rot.llt().matrixU();
   J.block<3, 3>(6, 6) = Eigen::Matrix3d::Identity() / velocity_sigma;
@@ -29,8 +28,8 @@ std::unique_ptr<MarginalizationPrior> MakeStatePrior(
   blocks[0].x0.assign(pose, pose + 7);
   blocks[1].kind = PriorBlockKind::kEuclidean;
   blocks[1].x0.assign(speed_bias, speed_bias + 9);
-  return std::make_unique<MarginalizationPrior>(
-      blocks, Eigen::MatrixXd(J), Eigen::VectorXd::Zero(15));
+  return std::make_unique<MarginalizationPrior>(blocks, Eigen::MatrixXd(J),
+                                                Eigen::VectorXd::Zero(15));
 }
 
 }  // namespace vio

@@ -19,11 +19,11 @@
 namespace vio {
 
 // Named slots of the blocks (no magic offsets).
-constexpr int kPoseP = 0;   // t_w_b (3)
-constexpr int kPoseQ = 3;   // q_w_b (x, y, z, w)
-constexpr int kSbV = 0;     // v_w (3)
-constexpr int kSbBa = 3;    // b_a (3)
-constexpr int kSbBg = 6;    // b_g (3)
+constexpr int kPoseP = 0;  // t_w_b (3)
+constexpr int kPoseQ = 3;  // q_w_b (x, y, z, w)
+constexpr int kSbV = 0;    // v_w (3)
+constexpr int kSbBa = 3;   // b_a (3)
+constexpr int kSbBg = 6;   // b_g (3)
 constexpr int kMaxCameras = 2;
 
 struct WindowFrame {
@@ -37,21 +37,33 @@ struct WindowFrame {
   // the oldest frame.
   std::unique_ptr<ImuPreintegration> imu;
 
-  Eigen::Map<Eigen::Vector3d> p_w_b() { return Eigen::Map<Eigen::Vector3d>(&pose[kPoseP]); }
-  Eigen::Map<Eigen::Quaterniond> q_w_b() { return Eigen::Map<Eigen::Quaterniond>(&pose[kPoseQ]); }
-  Eigen::Map<Eigen::Vector3d> v_w() { return Eigen::Map<Eigen::Vector3d>(&speed_bias[kSbV]); }
-  Eigen::Map<Eigen::Vector3d> b_a() { return Eigen::Map<Eigen::Vector3d>(&speed_bias[kSbBa]); }
-  Eigen::Map<Eigen::Vector3d> b_g() { return Eigen::Map<Eigen::Vector3d>(&speed_bias[kSbBg]); }
+  Eigen::Map<Eigen::Vector3d> p_w_b() {
+    return Eigen::Map<Eigen::Vector3d>(&pose[kPoseP]);
+  }
+  Eigen::Map<Eigen::Quaterniond> q_w_b() {
+    return Eigen::Map<Eigen::Quaterniond>(&pose[kPoseQ]);
+  }
+  Eigen::Map<Eigen::Vector3d> v_w() {
+    return Eigen::Map<Eigen::Vector3d>(&speed_bias[kSbV]);
+  }
+  Eigen::Map<Eigen::Vector3d> b_a() {
+    return Eigen::Map<Eigen::Vector3d>(&speed_bias[kSbBa]);
+  }
+  Eigen::Map<Eigen::Vector3d> b_g() {
+    return Eigen::Map<Eigen::Vector3d>(&speed_bias[kSbBg]);
+  }
   Eigen::Isometry3d T_w_b() const {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::Quaterniond(pose.data() + kPoseQ).normalized().toRotationMatrix();
+    T.linear() = Eigen::Quaterniond(pose.data() + kPoseQ)
+                     .normalized()
+                     .toRotationMatrix();
     T.translation() = Eigen::Vector3d(pose.data() + kPoseP);
     return T;
   }
 };
 
 struct Window {
-  std::deque<std::unique_ptr<WindowFrame>> frames;  // oldest first
+  std::deque<std::unique_ptr<WindowFrame>> frames;              // oldest first
   std::array<std::array<double, 7>, kMaxCameras> extrinsics{};  // T_b_c
   int num_cameras = 1;
 
@@ -70,7 +82,8 @@ struct Window {
   Eigen::Isometry3d T_b_c(int camera) const {
     const std::array<double, 7>& e = extrinsics[camera];
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::Quaterniond(e.data() + kPoseQ).normalized().toRotationMatrix();
+    T.linear() =
+        Eigen::Quaterniond(e.data() + kPoseQ).normalized().toRotationMatrix();
     T.translation() = Eigen::Vector3d(e.data() + kPoseP);
     return T;
   }
@@ -83,8 +96,13 @@ struct Window {
 // The ambient pose array of an isometry.
 inline std::array<double, 7> PoseArray(const Eigen::Isometry3d& T) {
   const Eigen::Quaterniond q(T.linear());
-  return {T.translation().x(), T.translation().y(), T.translation().z(),
-          q.x(), q.y(), q.z(), q.w()};
+  return {T.translation().x(),
+          T.translation().y(),
+          T.translation().z(),
+          q.x(),
+          q.y(),
+          q.z(),
+          q.w()};
 }
 
 }  // namespace vio

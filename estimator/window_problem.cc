@@ -136,8 +136,8 @@ void WindowProblem::AddLandmark(Landmark* l) {
         r.owned = std::make_unique<ReprojectionFactor>(a.xy, s.xy, sqrt_info);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, rho};
       } else {
-        r.owned = std::make_unique<StereoTwoFrameReprojectionFactor>(
-            a.xy, s.xy, sqrt_info);
+        r.owned = std::make_unique<StereoTwoFrameReprojectionFactor>(a.xy, s.xy,
+                                                                     sqrt_info);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, ext1, rho};
       }
     }
@@ -210,8 +210,8 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
   for (double* values : block_order_) {
     if (touched.count(values) == 0) continue;
     const BlockInfo& info = blocks_.at(values);
-    m.parameter_blocks.push_back({values, info.size,
-                                  info.manifold, info.constant});
+    m.parameter_blocks.push_back(
+        {values, info.size, info.manifold, info.constant});
   }
   m.marginalized.push_back(oldest.pose.data());
   m.marginalized.push_back(oldest.speed_bias.data());

@@ -11,8 +11,8 @@
 // Visual factors per landmark, from its anchor a (first camera-0 sighting,
 // frame i) to each later sighting s (frame j, camera c):
 //   j == i, c == 1: StereoReprojectionFactor        [T_b_c0, T_b_c1, rho]
-//   j != i, c == 0: ReprojectionFactor              [pose_i, pose_j, T_b_c0, rho]
-//   j != i, c == 1: StereoTwoFrameReprojectionFactor
+//   j != i, c == 0: ReprojectionFactor              [pose_i, pose_j, T_b_c0,
+//   rho] j != i, c == 1: StereoTwoFrameReprojectionFactor
 //                                  [pose_i, pose_j, T_b_c0, T_b_c1, rho]
 // Sightings older than the anchor (camera 1 only) are not used, so only the
 // landmarks anchored in a frame have residuals touching that frame: the
@@ -85,7 +85,7 @@ class WindowProblem {
     std::unique_ptr<ceres::CostFunction> owned;
     const ceres::LossFunction* loss = nullptr;
     std::vector<double*> blocks;
-    int64_t feature_id = -1;   // visual residuals only
+    int64_t feature_id = -1;  // visual residuals only
     int64_t anchor_frame = -1;
     int64_t imu_start_frame = -1;  // IMU residuals only
   };

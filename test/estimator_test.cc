@@ -20,8 +20,8 @@ void Report(const char* name, const testing::SimReplay& r) {
       "RPE %.4f m |db_a| %.4f |db_g| %.5f outliers %lld mean solve %.2f ms "
       "max %.2f ms\n",
       name, (long long)r.summary.frames, (long long)r.summary.frames_processed,
-      (long long)r.summary.keyframes, (long long)r.summary.resets,
-      r.ate_rmse_m, r.rpe_rmse_m, r.final_b_a_error, r.final_b_g_error,
+      (long long)r.summary.keyframes, (long long)r.summary.resets, r.ate_rmse_m,
+      r.rpe_rmse_m, r.final_b_a_error, r.final_b_g_error,
       (long long)r.summary.outlier_landmarks_removed,
       1e3 * sum / std::max<size_t>(1, r.summary.solver_time_s.size()),
       1e3 * max_solve);

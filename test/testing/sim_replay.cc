@@ -51,17 +51,19 @@ SimReplay ReplaySimulation(const Simulation& simulation,
 
   Trajectory estimate, truth;
   for (const EstimatorOutput& o : r.outputs) {
-    if (o.processed && o.initialized) estimate.push_back({o.t_ns, o.p_w_b, o.q_w_b});
+    if (o.processed && o.initialized)
+      estimate.push_back({o.t_ns, o.p_w_b, o.q_w_b});
   }
-  for (const StampedState& s : simulation.ground_truth) truth.push_back(PoseOf(s));
+  for (const StampedState& s : simulation.ground_truth)
+    truth.push_back(PoseOf(s));
   if (estimate.size() < 3) return r;
   const Association a = Associate(estimate, truth);
   const Alignment align =
       Align(a.estimate, a.ground_truth, AlignmentMode::kPosYaw);
   const Trajectory aligned = align.Apply(a.estimate);
   r.ate_rmse_m = ComputeAte(aligned, a.ground_truth).translation.rmse;
-  r.rpe_rmse_m =
-      ComputeRpe(aligned, a.ground_truth, 1.0, RpeUnit::kMeters).translation.rmse;
+  r.rpe_rmse_m = ComputeRpe(aligned, a.ground_truth, 1.0, RpeUnit::kMeters)
+                     .translation.rmse;
   // Biases at the last estimate against the truth at that stamp.
   const EstimatorOutput& last = r.outputs.back();
   const StampedState* gt = &simulation.ground_truth.front();

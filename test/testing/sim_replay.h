@@ -16,8 +16,8 @@ namespace testing {
 struct SimReplay {
   std::vector<EstimatorOutput> outputs;
   EstimatorSummary summary;
-  double ate_rmse_m = -1.0;    // after posyaw alignment [m]
-  double rpe_rmse_m = -1.0;    // over 1 m of travel [m]
+  double ate_rmse_m = -1.0;      // after posyaw alignment [m]
+  double rpe_rmse_m = -1.0;      // over 1 m of travel [m]
   double final_b_a_error = 0.0;  // |b_a - truth| at the last frame [m/s^2]
   double final_b_g_error = 0.0;  // [rad/s]
 };
