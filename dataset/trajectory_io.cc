@@ -31,29 +31,36 @@ void CheckIncreasing(const CsvReader& csv, int64_t previous, int64_t t_ns,
   }
 }
 
+bool AllDigits(const std::string& s) {
+  for (char c : s) {
+    if (c < '0' || c > '9') return false;
+  }
+  return true;
+}
+
 // Seconds with up to 9 decimals -> integer ns without going through a double
-// (1.4e9 s does not fit a double's mantissa at ns resolution).
+// (1.4e9 s does not fit a double's mantissa at ns resolution). Accepts
+// [+-]digits[.digits] with at least one digit; decimals past the 9th are cut.
 int64_t SecondsToNs(const CsvReader& csv, const std::string& text) {
-  const size_t dot = text.find('.');
-  const std::string whole = text.substr(0, dot);
-  std::string frac = dot == std::string::npos ? "" : text.substr(dot + 1);
-  if (frac.size() > 9) frac = frac.substr(0, 9);
-  while (frac.size() < 9) frac.push_back('0');
-  const bool negative = !whole.empty() && whole[0] == '-';
-  try {
-    size_t used_w = 0, used_f = 0;
-    const long long w =
-        whole.empty() || whole == "-" ? 0 : std::stoll(whole, &used_w);
-    const long long f = std::stoll(frac, &used_f);
-    if ((!whole.empty() && whole != "-" && used_w != whole.size()) ||
-        used_f != frac.size()) {
-      throw std::invalid_argument(text);
-    }
-    const long long ns = std::llabs(w) * 1000000000LL + f;
-    return negative ? -ns : ns;
-  } catch (const std::exception&) {
+  const bool negative = !text.empty() && text[0] == '-';
+  const bool signed_text = !text.empty() && (text[0] == '-' || text[0] == '+');
+  const std::string body = signed_text ? text.substr(1) : text;
+  const size_t dot = body.find('.');
+  const std::string whole = body.substr(0, dot);
+  std::string frac = dot == std::string::npos ? "" : body.substr(dot + 1);
+  if (!AllDigits(whole) || !AllDigits(frac) ||
+      (whole.empty() && frac.empty())) {
     csv.Fail("timestamp is not a number of seconds ('" + text + "')");
   }
+  // int64 ns hold up to 9.2e9 s.
+  if (whole.size() > 10 || std::stoll("0" + whole) >= 9000000000LL) {
+    csv.Fail("timestamp is out of range ('" + text + "', at most 9e9 s)");
+  }
+  if (frac.size() > 9) frac = frac.substr(0, 9);
+  while (frac.size() < 9) frac.push_back('0');
+  const long long w = std::stoll("0" + whole);
+  const long long ns = w * 1000000000LL + std::stoll(frac);
+  return negative ? -ns : ns;
 }
 
 std::ofstream OpenForWriting(const std::string& path) {

@@ -1,0 +1,59 @@
+#ifndef VIO_EVAL_ASSOCIATION_H_
+#define VIO_EVAL_ASSOCIATION_H_
+
+// Pairs the poses of an estimated trajectory with ground-truth poses by
+// timestamp, with the rule of evo's sync.associate_trajectories (its current
+// single-pass form over matching_time_indices):
+//
+//   - The trajectory with fewer poses is walked in order ("short"); when both
+//     have the same number, the estimate is walked. For the usual case (a
+//     20 Hz estimate against 200 Hz ground truth) this is "each estimate to
+//     the nearest ground-truth stamp".
+//   - Each short pose takes the pose of the other ("long") trajectory whose
+//     stamp is nearest to its own, and is kept only when |difference| <=
+//     max_diff (inclusive); otherwise it is dropped.
+//   - Ties (two long stamps exactly equally near) go to the earlier stamp, as
+//     numpy's argmin returns the first minimum.
+//   - A long pose may be taken by several short poses (no uniqueness), again
+//     as evo does. The short poses are never repeated.
+//
+// Stamps are compared as integer nanoseconds, so unlike evo (double seconds)
+// there is no rounding at the max_diff boundary.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "dataset/trajectory.h"
+
+namespace vio {
+
+struct AssociationOptions {
+  double max_diff = 0.01;  // [s] largest accepted |t_est - t_gt|, evo's default
+
+  // Throws std::invalid_argument unless max_diff is finite and >= 0.
+  void Validate() const;
+};
+
+// Two equally long trajectories, element i of one paired with element i of
+// the other, in the walked trajectory's order.
+struct Association {
+  Trajectory estimate;
+  Trajectory ground_truth;
+  size_t num_estimate_in = 0;      // poses in the input estimate
+  size_t num_ground_truth_in = 0;  // poses in the input ground truth
+  bool walked_estimate = true;     // true: the estimate was the short side
+
+  size_t size() const { return estimate.size(); }
+};
+
+// Associates by the rule above. Both inputs must have strictly increasing
+// stamps (the trajectory readers guarantee it); throws std::invalid_argument
+// when they do not or when the options are invalid. An empty result is not an
+// error here: callers decide how many pairs they need.
+Association Associate(const Trajectory& estimate,
+                      const Trajectory& ground_truth,
+                      const AssociationOptions& options = {});
+
+}  // namespace vio
+
+#endif  // VIO_EVAL_ASSOCIATION_H_
