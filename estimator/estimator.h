@@ -85,10 +85,20 @@ struct EstimatorSummary {
   int64_t landmarks_triangulated = 0;
   int64_t outlier_landmarks_removed = 0;
   int64_t marginalizations = 0;
-  int64_t marginalization_failures = 0;        // prior replaced by a fresh one
-  int64_t solver_failures = 0;                 // Ceres reported failure
-  std::vector<double> solver_time_s;           // Ceres, per step [s]
-  std::vector<double> marginalization_time_s;  // per marginalisation [s]
+  int64_t marginalization_failures = 0;  // prior replaced by a fresh one
+  int64_t solver_failures = 0;           // Ceres reported failure
+  // Per step: Ceres' wall time, and the CPU time of this thread during the
+  // solve (unaffected by other processes competing for the cores) [s].
+  std::vector<double> solver_time_s;
+  std::vector<double> solver_cpu_time_s;
+  // Where the solver time goes, summed over all steps [s], and iterations.
+  double solver_jacobian_time_s = 0.0;    // residual + Jacobian evaluation
+  double solver_residual_time_s = 0.0;    // residual-only evaluation
+  double solver_linear_time_s = 0.0;      // linear solver (Schur, Cholesky)
+  double solver_preprocess_time_s = 0.0;  // problem setup inside Ceres
+  int64_t solver_iterations = 0;
+  std::vector<double> marginalization_time_s;      // wall, each [s]
+  std::vector<double> marginalization_cpu_time_s;  // thread CPU, each [s]
   std::vector<int> landmarks_per_step;
 };
 

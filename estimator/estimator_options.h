@@ -17,7 +17,7 @@ namespace vio {
 // When a new frame becomes a keyframe (the newest frame against the last
 // keyframe, over the features seen in both).
 struct KeyframeOptions {
-  double min_parallax_px = 10.0;  // mean parallax that makes a keyframe [px]
+  double min_parallax_px = 20.0;  // mean parallax that makes a keyframe [px]
   int min_tracked_features = 50;  // fewer tracked features: keyframe [-]
 };
 
@@ -39,7 +39,7 @@ struct LandmarkOptions {
   // sightings exceeds this is removed [px].
   double outlier_threshold_px = 3.0;
   // Landmarks per step at most, those with the most sightings first [-].
-  int max_landmarks = 300;
+  int max_landmarks = 120;
 };
 
 // Static start: the IMU tells when the vehicle stands still.
@@ -83,7 +83,7 @@ struct FailureOptions {
 struct SolverOptions {
   ceres::LinearSolverType linear_solver = ceres::DENSE_SCHUR;
   ceres::TrustRegionStrategyType trust_region = ceres::DOGLEG;
-  int max_iterations = 8;    // [-]
+  int max_iterations = 4;    // [-]
   double max_time_s = 0.04;  // per step [s]
   // 1 makes every run bit-for-bit repeatable (Ceres sums Jacobian blocks in a
   // thread-dependent order with more threads).

@@ -108,15 +108,24 @@ void PrintSummary(const EstimatorSummary& s,
   }
   std::printf(
       "  solver time per step  median %.2f ms, p95 %.2f ms, max %.2f "
-      "ms (%zu steps)\n",
-      1e3 * Quantile(s.solver_time_s, 0.5),
-      1e3 * Quantile(s.solver_time_s, 0.95),
-      1e3 * Quantile(s.solver_time_s, 1.0), s.solver_time_s.size());
+      "ms CPU (%zu steps; wall median %.2f ms)\n",
+      1e3 * Quantile(s.solver_cpu_time_s, 0.5),
+      1e3 * Quantile(s.solver_cpu_time_s, 0.95),
+      1e3 * Quantile(s.solver_cpu_time_s, 1.0), s.solver_cpu_time_s.size(),
+      1e3 * Quantile(s.solver_time_s, 0.5));
   std::printf(
-      "  marginalisation       median %.2f ms, max %.2f ms (%lld, "
+      "  solver time split     Jacobians %.2f s, residuals %.2f s, linear "
+      "solver %.2f s, preprocessing %.2f s; %.1f iterations per step\n",
+      s.solver_jacobian_time_s, s.solver_residual_time_s,
+      s.solver_linear_time_s, s.solver_preprocess_time_s,
+      s.solver_time_s.empty()
+          ? 0.0
+          : static_cast<double>(s.solver_iterations) / s.solver_time_s.size());
+  std::printf(
+      "  marginalisation       median %.2f ms, max %.2f ms CPU (%lld, "
       "%lld failed)\n",
-      1e3 * Quantile(s.marginalization_time_s, 0.5),
-      1e3 * Quantile(s.marginalization_time_s, 1.0),
+      1e3 * Quantile(s.marginalization_cpu_time_s, 0.5),
+      1e3 * Quantile(s.marginalization_cpu_time_s, 1.0),
       (long long)s.marginalizations, (long long)s.marginalization_failures);
   std::printf("  landmarks per step    median %.0f; outliers removed %lld\n",
               Quantile(std::vector<double>(s.landmarks_per_step.begin(),

@@ -25,28 +25,38 @@ EstimatorOptions OptionsFor(const SimulatorOptions& simulation) {
   return o;
 }
 
-SimReplay ReplaySimulation(const Simulation& simulation,
-                           const EstimatorOptions& options) {
+PreparedSimulation Prepare(const Simulation& simulation) {
   const SimCameraOptions& cam = simulation.options.camera;
   std::vector<CameraModel> models = {CameraModel(cam.cam0)};
   if (cam.stereo) models.push_back(CameraModel(cam.cam1));
-  std::vector<EstimatorCamera> cameras;
+  PreparedSimulation p;
   for (const CameraModel& m : models) {
     EstimatorCamera c;
     c.T_b_c.linear() = m.calibration().q_b_c.toRotationMatrix();
     c.T_b_c.translation() = m.calibration().t_b_c;
     c.focal_px = m.focal();
-    cameras.push_back(c);
+    p.cameras.push_back(c);
   }
   ObservationBuilder builder(models);
-  std::vector<FeatureFrame> frames = simulation.frames;
-  for (FeatureFrame& f : frames) builder.Process(&f);
+  p.frames = simulation.frames;
+  for (FeatureFrame& f : p.frames) builder.Process(&f);
+  return p;
+}
 
+SimReplay ReplaySimulation(const Simulation& simulation,
+                           const EstimatorOptions& options) {
+  return Replay(simulation, options, simulation.imu,
+                Prepare(simulation).frames);
+}
+
+SimReplay Replay(const Simulation& simulation, const EstimatorOptions& options,
+                 const std::vector<ImuSample>& imu,
+                 const std::vector<FeatureFrame>& frames) {
   Estimator estimator(options, VisualFactorOptions(),
                       simulation.options.imu.noise, PreintegrationOptions(),
-                      cameras);
+                      Prepare(simulation).cameras);
   SimReplay r;
-  r.outputs = RunSequence(&estimator, simulation.imu, frames);
+  r.outputs = RunSequence(&estimator, imu, frames);
   r.summary = estimator.summary();
 
   Trajectory estimate, truth;

@@ -28,6 +28,20 @@ SimulatorOptions ShortSimulation(double seconds, bool stereo);
 // The estimator options for a simulation (use_stereo as the simulation).
 EstimatorOptions OptionsFor(const SimulatorOptions& simulation);
 
+// The simulation's cameras and frames as the estimator takes them (xy and
+// velocity from the observation builder).
+struct PreparedSimulation {
+  std::vector<EstimatorCamera> cameras;
+  std::vector<FeatureFrame> frames;
+};
+PreparedSimulation Prepare(const Simulation& simulation);
+
+// Runs the estimator over imu and frames and evaluates against the truth.
+SimReplay Replay(const Simulation& simulation, const EstimatorOptions& options,
+                 const std::vector<ImuSample>& imu,
+                 const std::vector<FeatureFrame>& frames);
+
+// Replay of the simulation as it is.
 SimReplay ReplaySimulation(const Simulation& simulation,
                            const EstimatorOptions& options);
 
