@@ -2,6 +2,14 @@
 
 namespace vio {
 
-std::vector<FactorCase> AllFactorCases() { return {}; }
+std::vector<FactorCase> AllFactorCases() {
+  std::vector<FactorCase> cases;
+  cases.push_back(MakeImuFactorCase());
+  cases.push_back(MakeReprojectionCase());
+  cases.push_back(MakeTimedReprojectionCase());
+  cases.push_back(MakeStereoReprojectionCase());
+  cases.push_back(MakeStereoTwoFrameReprojectionCase());
+  return cases;
+}
 
 }  // namespace vio

@@ -1,0 +1,60 @@
+#include "config/imu_config.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace vio {
+namespace {
+
+std::string Shown(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+bool ImuConfig::Validate(std::string* message) const {
+  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
+    *message = "rate_hz must be > 0 (got " + Shown(rate_hz) + ")";
+    return false;
+  }
+  if (!(gravity_magnitude >= 9.7 && gravity_magnitude <= 9.9)) {
+    *message = "gravity_magnitude must be in [9.7, 9.9] m/s^2 (got " +
+               Shown(gravity_magnitude) + ")";
+    return false;
+  }
+  if (preintegration.max_sample_gap < 1.0 / rate_hz) {
+    *message =
+        "max_sample_gap must be at least one sample period 1 / rate_hz = " +
+        Shown(1.0 / rate_hz) + " s (got " +
+        Shown(preintegration.max_sample_gap) + ")";
+    return false;
+  }
+  return true;
+}
+
+ImuConfig LoadImuConfig(const YamlNode& root) {
+  const YamlNode imu = root.Child("imu");
+  ImuConfig c;
+  c.rate_hz = imu.Get<double>("rate_hz");
+  c.noise.accelerometer_noise_density =
+      imu.Get<double>("accelerometer_noise_density");
+  c.noise.gyroscope_noise_density = imu.Get<double>("gyroscope_noise_density");
+  c.noise.accelerometer_random_walk =
+      imu.Get<double>("accelerometer_random_walk");
+  c.noise.gyroscope_random_walk = imu.Get<double>("gyroscope_random_walk");
+  c.gravity_magnitude = imu.Get<double>("gravity_magnitude");
+  c.preintegration.max_sample_gap = imu.Get<double>("max_sample_gap");
+  c.preintegration.repropagate_acc_bias_change =
+      imu.Get<double>("repropagate_acc_bias_change");
+  c.preintegration.repropagate_gyr_bias_change =
+      imu.Get<double>("repropagate_gyr_bias_change");
+  // The module's own checks first, so each message names its field.
+  ValidateAt(imu, c.noise);
+  ValidateAt(imu, c.preintegration);
+  ValidateAt(imu, c);
+  return c;
+}
+
+}  // namespace vio

@@ -1,0 +1,56 @@
+#include "factors/timed_reprojection_factor.h"
+
+#include "factors/inverse_depth_chain.h"
+
+namespace vio {
+namespace {
+
+// xy(t_d) = xy - (t_d - t_d_at_stamp) * velocity.
+Eigen::Vector2d Shifted(const TimedObservation& obs, double t_d) {
+  return obs.xy - (t_d - obs.t_d_at_stamp) * obs.velocity;
+}
+
+}  // namespace
+
+TimedReprojectionFactor::TimedReprojectionFactor(const TimedObservation& obs_i,
+                                                 const TimedObservation& obs_j,
+                                                 double sqrt_info)
+    : obs_i_(obs_i), obs_j_(obs_j), sqrt_info_(sqrt_info) {}
+
+bool TimedReprojectionFactor::Evaluate(double const* const* parameters,
+                                       double* residuals,
+                                       double** jacobians) const {
+  const double t_d = parameters[kTimeOffset][0];
+  const Eigen::Vector2d xy_i = Shifted(obs_i_, t_d);
+  const Eigen::Vector3d f_i(xy_i.x(), xy_i.y(), 1.0);
+  const Rigid T_b_c = Rigid::FromBlock(parameters[kExtrinsic]);
+  const InverseDepthChain chain(f_i, parameters[kInverseDepth][0], T_b_c,
+                                Rigid::FromBlock(parameters[kPoseI]),
+                                Rigid::FromBlock(parameters[kPoseJ]), T_b_c);
+  const ProjectedResidual p =
+      ProjectResidual(chain.h_c(), Shifted(obs_j_, t_d), sqrt_info_);
+  Eigen::Map<Eigen::Vector2d> r(residuals);
+  r = p.r;
+  if (jacobians == nullptr) return true;
+
+  // Poses, extrinsic and rho: as in ReprojectionFactor, on the shifted f_i.
+  WriteChainJacobians(p, chain,
+                      {ChainBlock::kPoseI, ChainBlock::kPoseJ,
+                       ChainBlock::kSharedExtrinsic, ChainBlock::kInverseDepth},
+                      parameters, jacobians);
+  if (jacobians[kTimeOffset] != nullptr) {
+    // t_d moves both observations: d f_i / d t_d = (-v_i, 0), and
+    // d xy_j(t_d) / d t_d = -v_j enters r with a minus sign:
+    //   d r / d t_d = d_r_d_h (d h_c / d f_i) (-v_i, 0) + sqrt_info v_j.
+    Eigen::Map<Eigen::Vector2d> d_r_d_td(jacobians[kTimeOffset]);
+    d_r_d_td.setZero();
+    if (p.active) {
+      d_r_d_td =
+          -p.d_r_d_h * chain.d_h_d_bearing().leftCols<2>() * obs_i_.velocity +
+          sqrt_info_ * obs_j_.velocity;
+    }
+  }
+  return true;
+}
+
+}  // namespace vio
