@@ -69,7 +69,7 @@ TEST(EstimatorConfig, ErrorsNameFileAndKey) {
   const std::string text = ReadText(ConfigPath("default.yaml"));
   EXPECT_EQ(ErrorOf(Replace(text, "window_size: 10", "window_size: 1")),
             "test.yaml: estimator.window_size must be >= 2 (got 1)");
-  EXPECT_EQ(ErrorOf(Replace(text, "    max_landmarks: 300", "")),
+  EXPECT_EQ(ErrorOf(Replace(text, "    max_landmarks: 120", "")),
             "test.yaml: estimator.landmarks.max_landmarks is missing");
   EXPECT_EQ(ErrorOf(Replace(text, "linear_solver: dense_schur",
                             "linear_solver: cholmod")),
