@@ -50,7 +50,6 @@ Estimator::Estimator(const EstimatorOptions& options,
       noise_(noise),
       preintegration_(preintegration),
       cameras_(cameras),
-      t_d_(options.initial_time_offset_s),
       static_init_(options.static_init, options.gravity_magnitude),
       features_(options.use_stereo ? 2 : 1) {
   std::string message;
@@ -63,6 +62,7 @@ Estimator::Estimator(const EstimatorOptions& options,
   Require(!options.use_stereo || cameras.size() == 2, "",
           "use_stereo needs 2 cameras");
   window_.num_cameras = options.use_stereo ? 2 : 1;
+  window_.t_d = options.initial_time_offset_s;
   for (int c = 0; c < window_.num_cameras; ++c) {
     Require(cameras[c].focal_px > 0.0 && std::isfinite(cameras[c].focal_px), "",
             "camera focal length must be > 0");
@@ -113,7 +113,7 @@ EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
     ++summary_.frames_out_of_order;
     return skipped;
   }
-  const int64_t t_imu_ns = frame.t_ns + SecondsToNs(t_d_);
+  const int64_t t_imu_ns = frame.t_ns + SecondsToNs(window_.t_d);
   if (imu_.empty() || imu_.back().t_ns < t_imu_ns) {
     ++summary_.frames_without_imu;
     return skipped;
@@ -161,6 +161,7 @@ void Estimator::StartWindow(const FeatureFrame& frame, int64_t t_imu_ns,
   f->id = next_frame_id_++;
   f->t_ns = frame.t_ns;
   f->t_imu_ns = t_imu_ns;
+  f->t_d_at_stamp = window_.t_d;
   f->keyframe = true;
   f->p_w_b() = state.p_w_b;
   f->q_w_b() = state.q_w_b.normalized();
@@ -229,6 +230,7 @@ bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   f->id = next_frame_id_++;
   f->t_ns = frame.t_ns;
   f->t_imu_ns = t_imu_ns;
+  f->t_d_at_stamp = window_.t_d;
   // Prediction: p_j = p_i + v_i T + g T^2 / 2 + R_i dp,
   //             v_j = v_i + g T + R_i dv,  q_j = q_i dq.
   const Eigen::Isometry3d T_w_i = prev.T_w_b();
@@ -309,7 +311,7 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
     return true;
   }
 
-  const std::vector<int64_t> outliers =
+  const OutlierReport outliers =
       problem.Outliers(options_.landmarks.outlier_threshold_px);
   const bool keyframe = newest.keyframe;
   if (keyframe) {
@@ -319,8 +321,14 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   if (keyframe && window_.NumKeyframes() > options_.window_size) {
     MarginalizeOldest(problem, outliers);
   }
-  for (int64_t id : outliers) features_.RemoveLandmark(id);
-  summary_.outlier_landmarks_removed += static_cast<int64_t>(outliers.size());
+  for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
+  for (const OutlierReport::BadSighting& b : outliers.sightings) {
+    features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
+  }
+  summary_.outlier_landmarks_removed +=
+      static_cast<int64_t>(outliers.landmarks.size());
+  summary_.outlier_sightings_removed +=
+      static_cast<int64_t>(outliers.sightings.size());
   if (keyframe && window_.NumKeyframes() > options_.window_size) {
     features_.RemoveFrame(window_.frames.front()->id, PoseFn());
     window_.frames.pop_front();
@@ -339,16 +347,16 @@ WindowProblemSettings Estimator::ProblemSettings() const {
   s.visual = visual_;
   s.gravity_magnitude = options_.gravity_magnitude;
   s.estimate_extrinsics = options_.estimate_extrinsics;
+  s.estimate_time_offset = options_.estimate_time_offset;
   s.max_landmarks = options_.landmarks.max_landmarks;
   return s;
 }
 
 void Estimator::MarginalizeOldest(const WindowProblem& problem,
-                                  const std::vector<int64_t>& outliers) {
+                                  const OutlierReport& outliers) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ThreadCpuSeconds();
-  const std::set<int64_t> excluded(outliers.begin(), outliers.end());
-  const MarginalizationProblem m = problem.OldestFrameMarginalization(excluded);
+  const MarginalizationProblem m = problem.OldestFrameMarginalization(outliers);
   const MarginalizationResult result = Marginalize(m);
   ++summary_.marginalizations;
   if (result.ok()) {

@@ -83,7 +83,8 @@ struct EstimatorSummary {
   int64_t frames_without_observations = 0;  // processed on the IMU alone
   int64_t observations_skipped = 0;         // non-finite, unknown camera, ...
   int64_t landmarks_triangulated = 0;
-  int64_t outlier_landmarks_removed = 0;
+  int64_t outlier_landmarks_removed = 0;  // most of their sightings bad
+  int64_t outlier_sightings_removed = 0;  // single sightings, landmark kept
   int64_t marginalizations = 0;
   int64_t marginalization_failures = 0;  // prior replaced by a fresh one
   int64_t solver_failures = 0;           // Ceres reported failure
@@ -125,7 +126,7 @@ class Estimator {
   const EstimatorOptions& options() const { return options_; }
   bool initialized() const { return initialized_; }
   // The current camera-IMU time offset [s].
-  double time_offset_s() const { return t_d_; }
+  double time_offset_s() const { return window_.t_d; }
 
  private:
   bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
@@ -137,7 +138,7 @@ class Estimator {
                    EstimatorOutput* predicted);
   void DropSecondNewest();
   void MarginalizeOldest(const WindowProblem& problem,
-                         const std::vector<int64_t>& outliers);
+                         const OutlierReport& outliers);
   void UpdateImuLinearization();
   WindowProblemSettings ProblemSettings() const;
   void SetPriorOnOldest(double velocity_sigma);
@@ -151,7 +152,6 @@ class Estimator {
   ImuNoise noise_;
   PreintegrationOptions preintegration_;
   std::vector<EstimatorCamera> cameras_;
-  double t_d_ = 0.0;  // [s]
 
   StaticInitializer static_init_;
   FeatureManager features_;

@@ -35,9 +35,11 @@ struct TriangulationOptions {
 // pixel noise and the robust kernel are the visual factors' own options,
 // factors/visual_factor_options.h.)
 struct LandmarkOptions {
-  // After the solve, a landmark whose RMS reprojection error over its
-  // sightings exceeds this is removed [px].
-  double outlier_threshold_px = 3.0;
+  // After the solve, a sighting whose reprojection error exceeds this is
+  // removed; a landmark with most of its sightings beyond it is removed
+  // whole [px]. With 1 px feature noise a good sighting passes 5 px almost
+  // surely; a tracker slip lands far beyond it.
+  double outlier_threshold_px = 5.0;
   // Landmarks per step at most, those with the most sightings first [-].
   int max_landmarks = 120;
 };

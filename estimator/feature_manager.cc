@@ -112,6 +112,27 @@ void FeatureManager::RemoveFrame(int64_t frame_id, const CameraPoseFn& T_w_c) {
   }
 }
 
+void FeatureManager::RemoveSighting(int64_t feature_id, int64_t frame_id,
+                                    int camera) {
+  const auto it = landmarks_.find(feature_id);
+  if (it == landmarks_.end()) return;
+  Landmark& l = it->second;
+  const int anchor = l.AnchorIndex();
+  for (size_t i = 0; i < l.sightings.size(); ++i) {
+    if (l.sightings[i].frame_id != frame_id ||
+        l.sightings[i].camera != camera) {
+      continue;
+    }
+    if (static_cast<int>(i) == anchor) {
+      l.triangulated = false;
+      l.inverse_depth = 0.0;
+    }
+    l.sightings.erase(l.sightings.begin() + i);
+    break;
+  }
+  if (l.sightings.empty()) landmarks_.erase(it);
+}
+
 int FeatureManager::TriangulateNew(const CameraPoseFn& T_w_c,
                                    const TriangulationOptions& options) {
   int count = 0;

@@ -100,6 +100,10 @@ class FeatureManager {
                                     const CameraPoseFn& T_w_c);
 
   void RemoveLandmark(int64_t feature_id) { landmarks_.erase(feature_id); }
+  // Removes one sighting (nothing when absent). When it was the anchor the
+  // landmark is re-anchored untriangulated (its depth belonged to the
+  // removed bearing); a landmark left without sightings is deleted.
+  void RemoveSighting(int64_t feature_id, int64_t frame_id, int camera);
   void Clear() { landmarks_.clear(); }
 
   // By feature id, so iteration is deterministic.

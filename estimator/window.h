@@ -27,9 +27,10 @@ constexpr int kSbBg = 6;   // b_g (3)
 constexpr int kMaxCameras = 2;
 
 struct WindowFrame {
-  int64_t id = 0;        // increasing over the run
-  int64_t t_ns = 0;      // camera stamp [ns]
-  int64_t t_imu_ns = 0;  // IMU time of the pose: t_ns + t_d [ns]
+  int64_t id = 0;             // increasing over the run
+  int64_t t_ns = 0;           // camera stamp [ns]
+  int64_t t_imu_ns = 0;       // IMU time of the pose: t_ns + t_d [ns]
+  double t_d_at_stamp = 0.0;  // the t_d that placed the pose [s]
   bool keyframe = false;
   std::array<double, 7> pose{0, 0, 0, 0, 0, 0, 1};
   std::array<double, 9> speed_bias{};
@@ -66,6 +67,7 @@ struct Window {
   std::deque<std::unique_ptr<WindowFrame>> frames;              // oldest first
   std::array<std::array<double, 7>, kMaxCameras> extrinsics{};  // T_b_c
   int num_cameras = 1;
+  double t_d = 0.0;  // camera-IMU time offset, t_imu = t_cam + t_d [s]
 
   // nullptr when the frame is not in the window.
   WindowFrame* Find(int64_t id) const {

@@ -9,6 +9,7 @@
 #include "factors/reprojection_factor.h"
 #include "factors/robust_kernel.h"
 #include "factors/stereo_reprojection_factor.h"
+#include "factors/timed_reprojection_factor.h"
 
 namespace vio {
 namespace {
@@ -39,6 +40,9 @@ WindowProblem::WindowProblem(Window* window, FeatureManager* features,
   for (int c = 0; c < window_->num_cameras; ++c) {
     AddBlock(window_->extrinsics[c].data(), 7, /*pose=*/true,
              !settings_.estimate_extrinsics);
+  }
+  if (settings_.estimate_time_offset) {
+    AddBlock(&window_->t_d, 1, /*pose=*/false, /*constant=*/false);
   }
 }
 
@@ -125,6 +129,9 @@ void WindowProblem::AddLandmark(Landmark* l) {
     Residual r;
     r.loss = loss_.get();
     r.feature_id = l->feature_id;
+    r.rho = rho;
+    r.target_frame = s.frame_id;
+    r.target_camera = s.camera;
     r.anchor_frame = a.frame_id;
     if (s.frame_id == a.frame_id) {
       r.owned =
@@ -132,7 +139,13 @@ void WindowProblem::AddLandmark(Landmark* l) {
       r.blocks = {ext0, ext1, rho};
     } else {
       double* pose_j = window_->Find(s.frame_id)->pose.data();
-      if (s.camera == 0) {
+      if (s.camera == 0 && settings_.estimate_time_offset) {
+        const double t_d_j = window_->Find(s.frame_id)->t_d_at_stamp;
+        r.owned = std::make_unique<TimedReprojectionFactor>(
+            TimedObservation{a.xy, a.velocity, frame_i->t_d_at_stamp},
+            TimedObservation{s.xy, s.velocity, t_d_j}, sqrt_info);
+        r.blocks = {frame_i->pose.data(), pose_j, ext0, rho, &window_->t_d};
+      } else if (s.camera == 0) {
         r.owned = std::make_unique<ReprojectionFactor>(a.xy, s.xy, sqrt_info);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, rho};
       } else {
@@ -161,15 +174,24 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {
   return summary;
 }
 
-std::vector<int64_t> WindowProblem::Outliers(double threshold_px) const {
-  std::vector<int64_t> out;
+bool OutlierReport::Involves(int64_t feature_id) const {
+  for (int64_t id : landmarks) {
+    if (id == feature_id) return true;
+  }
+  for (const BadSighting& s : sightings) {
+    if (s.feature_id == feature_id) return true;
+  }
+  return false;
+}
+
+OutlierReport WindowProblem::Outliers(double threshold_px) const {
+  OutlierReport report;
   // A whitened residual r = (focal / sigma) e has |e| focal = |r| sigma px.
-  // The test is on the RMS over the landmark's residuals (VINS-Mono uses the
-  // mean): a per-sighting 3 px test would, with 1 px noise, throw away ~1 %
-  // of good sightings and so ~10 % of good landmarks at every step.
+  // Each sighting is tested on its own, so that one bad observation (a
+  // tracker slip) costs that observation, not the whole landmark.
   const double max_norm = threshold_px / settings_.visual.sigma_px;
-  double sum_sq = 0.0;
-  int n = 0;
+  std::vector<OutlierReport::BadSighting> bad;
+  int total = 0;
   bool failed = false;
   for (size_t k = 0; k < residuals_.size(); ++k) {
     const Residual& r = residuals_[k];
@@ -177,22 +199,28 @@ std::vector<int64_t> WindowProblem::Outliers(double threshold_px) const {
     Eigen::Vector2d e;
     const bool ok = r.cost->Evaluate(r.blocks.data(), e.data(), nullptr);
     failed = failed || !ok || !e.allFinite();
-    sum_sq += failed ? 0.0 : e.squaredNorm();
-    ++n;
+    if (!failed && e.norm() > max_norm) {
+      bad.push_back({r.feature_id, r.target_frame, r.target_camera});
+    }
+    ++total;
     // A landmark's residuals are consecutive.
     const bool last = k + 1 == residuals_.size() ||
                       residuals_[k + 1].feature_id != r.feature_id;
     if (!last) continue;
-    if (failed || std::sqrt(sum_sq / n) > max_norm) out.push_back(r.feature_id);
-    sum_sq = 0.0;
-    n = 0;
+    if (failed || 2 * static_cast<int>(bad.size()) > total) {
+      report.landmarks.push_back(r.feature_id);
+    } else {
+      report.sightings.insert(report.sightings.end(), bad.begin(), bad.end());
+    }
+    bad.clear();
+    total = 0;
     failed = false;
   }
-  return out;
+  return report;
 }
 
 MarginalizationProblem WindowProblem::OldestFrameMarginalization(
-    const std::set<int64_t>& excluded) const {
+    const OutlierReport& excluded) const {
   MarginalizationProblem m;
   const WindowFrame& oldest = *window_->frames.front();
   std::set<const double*> touched;
@@ -200,7 +228,7 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
     const bool prior = r.feature_id < 0 && r.imu_start_frame < 0;
     const bool use = prior || r.imu_start_frame == oldest.id ||
                      (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-                      excluded.count(r.feature_id) == 0);
+                      !excluded.Involves(r.feature_id));
     if (!use) continue;
     m.residual_blocks.push_back({r.cost, r.loss, r.blocks});
     touched.insert(r.blocks.begin(), r.blocks.end());
@@ -217,10 +245,8 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
   m.marginalized.push_back(oldest.speed_bias.data());
   for (const Residual& r : residuals_) {
     if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-        excluded.count(r.feature_id) == 0 &&
-        m.marginalized.back() != r.blocks.back()) {
-      // The inverse depth is a visual residual's last block.
-      m.marginalized.push_back(r.blocks.back());
+        !excluded.Involves(r.feature_id) && m.marginalized.back() != r.rho) {
+      m.marginalized.push_back(r.rho);
     }
   }
   return m;

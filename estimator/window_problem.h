@@ -10,10 +10,14 @@
 //
 // Visual factors per landmark, from its anchor a (first camera-0 sighting,
 // frame i) to each later sighting s (frame j, camera c):
-//   j == i, c == 1: StereoReprojectionFactor        [T_b_c0, T_b_c1, rho]
-//   j != i, c == 0: ReprojectionFactor              [pose_i, pose_j, T_b_c0,
-//   rho] j != i, c == 1: StereoTwoFrameReprojectionFactor
-//                                  [pose_i, pose_j, T_b_c0, T_b_c1, rho]
+//   j == i, c == 1: StereoReprojectionFactor
+//                   blocks T_b_c0, T_b_c1, rho
+//   j != i, c == 0: ReprojectionFactor
+//                   blocks pose_i, pose_j, T_b_c0, rho
+//                   (TimedReprojectionFactor, with t_d after rho, when the
+//                   time offset is estimated)
+//   j != i, c == 1: StereoTwoFrameReprojectionFactor
+//                   blocks pose_i, pose_j, T_b_c0, T_b_c1, rho
 // Sightings older than the anchor (camera 1 only) are not used, so only the
 // landmarks anchored in a frame have residuals touching that frame: the
 // marginalisation of the oldest frame then removes exactly those landmarks,
@@ -42,7 +46,22 @@ struct WindowProblemSettings {
   VisualFactorOptions visual;
   double gravity_magnitude = 9.81;  // [m/s^2]
   bool estimate_extrinsics = false;
-  int max_landmarks = 300;
+  // Camera-0 factors between frames become TimedReprojectionFactors on the
+  // window's t_d block; camera-1 factors stay untimed.
+  bool estimate_time_offset = false;
+  int max_landmarks = 120;
+};
+
+// What the outlier test found.
+struct OutlierReport {
+  struct BadSighting {
+    int64_t feature_id = -1;
+    int64_t frame_id = -1;
+    int camera = 0;
+  };
+  std::vector<int64_t> landmarks;      // to remove whole, by feature id
+  std::vector<BadSighting> sightings;  // to remove, their landmark kept
+  bool Involves(int64_t feature_id) const;
 };
 
 class WindowProblem {
@@ -65,16 +84,17 @@ class WindowProblem {
   // Solves with the options (threads as given).
   ceres::Solver::Summary Solve(const SolverOptions& options);
 
-  // Features whose RMS reprojection error over their residuals at the
-  // current values exceeds threshold_px [px], or that failed to evaluate.
-  std::vector<int64_t> Outliers(double threshold_px) const;
+  // Sightings whose reprojection error at the current values exceeds
+  // threshold_px [px]. A landmark where most of its residuals are bad (its
+  // anchor is the likely culprit) or one fails to evaluate is listed whole.
+  OutlierReport Outliers(double threshold_px) const;
 
   // The marginalisation of the oldest window frame: its IMU factor, the prior
   // and every visual factor of the landmarks anchored in it; marginalised are
   // its pose and speed-bias blocks and those landmarks' inverse depths.
-  // Landmarks in `excluded` (outliers about to be removed) are left out.
+  // Landmarks with outliers (about to be removed) are left out.
   MarginalizationProblem OldestFrameMarginalization(
-      const std::set<int64_t>& excluded) const;
+      const OutlierReport& excluded) const;
 
   int num_visual_residuals() const { return num_visual_; }
   int landmarks_used() const { return landmarks_used_; }
@@ -85,7 +105,10 @@ class WindowProblem {
     std::unique_ptr<ceres::CostFunction> owned;
     const ceres::LossFunction* loss = nullptr;
     std::vector<double*> blocks;
-    int64_t feature_id = -1;  // visual residuals only
+    int64_t feature_id = -1;    // visual residuals only
+    double* rho = nullptr;      // visual residuals: the inverse depth
+    int64_t target_frame = -1;  // visual residuals: the sighting's frame
+    int target_camera = 0;
     int64_t anchor_frame = -1;
     int64_t imu_start_frame = -1;  // IMU residuals only
   };

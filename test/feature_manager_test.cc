@@ -149,6 +149,24 @@ TEST(FeatureManager, AnchorsInCameraZeroOnly) {
   EXPECT_FALSE(fm.landmarks().at(0).triangulated);
 }
 
+TEST(FeatureManager, RemovingTheAnchorSightingUntriangulates) {
+  const Scene scene(3);
+  FeatureManager fm(1);
+  for (int64_t f = 0; f < 3; ++f) fm.AddFrame(f, scene.Observe(f, 0, 3));
+  ASSERT_EQ(fm.TriangulateNew(scene.PoseFn(), TriangulationOptions()), 3);
+  fm.RemoveSighting(0, 1, 0);  // not the anchor: depth kept
+  EXPECT_TRUE(fm.landmarks().at(0).triangulated);
+  EXPECT_EQ(fm.landmarks().at(0).sightings.size(), 2u);
+  fm.RemoveSighting(1, 0, 0);  // the anchor
+  EXPECT_FALSE(fm.landmarks().at(1).triangulated);
+  EXPECT_EQ(fm.landmarks().at(1).anchor().frame_id, 1);
+  fm.RemoveSighting(2, 7, 0);  // absent: nothing happens
+  EXPECT_EQ(fm.landmarks().at(2).sightings.size(), 3u);
+  fm.RemoveSighting(0, 0, 0);
+  fm.RemoveSighting(0, 2, 0);
+  EXPECT_EQ(fm.landmarks().count(0), 0u);
+}
+
 TEST(DecideKeyframe, UsesParallaxInPixelsAndTrackedCount) {
   const Scene scene(60);
   FeatureManager fm(1);
