@@ -50,6 +50,9 @@ FactorCase MakeStereoReprojectionCase(
 FactorCase MakeStereoTwoFrameReprojectionCase(
     VisualGeometry geometry = VisualGeometry::kMixed);
 
+// The marginalisation prior (factors/marginalization_prior.h).
+FactorCase MakeMarginalizationPriorCase();
+
 }  // namespace vio
 
 #endif  // VIO_FACTORS_CHECK_FACTOR_CASES_H_

@@ -1,0 +1,348 @@
+#include "estimator/marginalization.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "factors/pose_manifold.h"
+
+namespace vio {
+namespace {
+
+using RowMajorMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Where one involved (non-constant) block sits in the dense system.
+struct Slot {
+  const MarginalizationParameterBlock* block = nullptr;
+  int offset = -1;  // first tangent column
+};
+
+MarginalizationResult Failure(std::string message) {
+  MarginalizationResult result;
+  result.status = MarginalizationStatus::kFailed;
+  result.message = std::move(message);
+  return result;
+}
+
+// Checks the problem's structure and values; returns "" when it is valid.
+std::string CheckProblem(const MarginalizationProblem& problem) {
+  std::map<const double*, int> listed;  // values -> ambient size
+  for (size_t i = 0; i < problem.parameter_blocks.size(); ++i) {
+    const MarginalizationParameterBlock& p = problem.parameter_blocks[i];
+    const std::string name = "parameter block " + std::to_string(i);
+    if (p.values == nullptr || p.size < 1) return name + " is empty";
+    if (!listed.emplace(p.values, p.size).second) {
+      return name + " is listed twice";
+    }
+    if (p.manifold && p.manifold->AmbientSize() != p.size) {
+      return name + " has a manifold of another ambient size";
+    }
+    if (!Eigen::Map<const Eigen::VectorXd>(p.values, p.size).allFinite()) {
+      return name + " has a non-finite value";
+    }
+  }
+  for (size_t i = 0; i < problem.marginalized.size(); ++i) {
+    if (listed.count(problem.marginalized[i]) == 0) {
+      return "marginalised block " + std::to_string(i) + " is not listed";
+    }
+  }
+  for (size_t i = 0; i < problem.residual_blocks.size(); ++i) {
+    const MarginalizationResidualBlock& r = problem.residual_blocks[i];
+    const std::string name = "residual block " + std::to_string(i);
+    if (r.cost == nullptr) return name + " has no cost function";
+    if (r.cost->parameter_block_sizes().size() != r.parameter_blocks.size()) {
+      return name + " has the wrong number of parameter blocks";
+    }
+    if (r.cost->num_residuals() < 1) return name + " has no residuals";
+    for (size_t j = 0; j < r.parameter_blocks.size(); ++j) {
+      const auto it = listed.find(r.parameter_blocks[j]);
+      if (it == listed.end()) return name + " touches an unlisted block";
+      if (it->second != r.cost->parameter_block_sizes()[j]) {
+        return name + ": parameter " + std::to_string(j) +
+               " has a size other than the listed block's";
+      }
+    }
+  }
+  return "";
+}
+
+// Marginalised blocks first, then kept ones (in listing order); constant and
+// untouched blocks get no slot. Returns the marginalised tangent size.
+int AssignSlots(const MarginalizationProblem& problem,
+                std::map<const double*, Slot>* slots,
+                std::vector<const MarginalizationParameterBlock*>* kept) {
+  std::set<const double*> touched,
+      marginalized(problem.marginalized.begin(), problem.marginalized.end());
+  for (const auto& r : problem.residual_blocks) {
+    touched.insert(r.parameter_blocks.begin(), r.parameter_blocks.end());
+  }
+  int offset = 0;
+  for (const auto& p : problem.parameter_blocks) {
+    if (!p.constant && marginalized.count(p.values)) {
+      (*slots)[p.values] = {&p, offset};
+      offset += p.TangentSize();
+    }
+  }
+  const int marginalized_size = offset;
+  for (const auto& p : problem.parameter_blocks) {
+    if (!p.constant && !marginalized.count(p.values) &&
+        touched.count(p.values)) {
+      (*slots)[p.values] = {&p, offset};
+      offset += p.TangentSize();
+      kept->push_back(&p);
+    }
+  }
+  return marginalized_size;
+}
+
+// Evaluates one residual block and adds its J^T J and -J^T r into H and b.
+// Returns false (adding nothing) when it cannot be used.
+bool Accumulate(const MarginalizationResidualBlock& r,
+                const std::map<const double*, Slot>& slots, Eigen::MatrixXd* H,
+                Eigen::VectorXd* b) {
+  const int m = r.cost->num_residuals();
+  const size_t n_blocks = r.parameter_blocks.size();
+  std::vector<RowMajorMatrix> ambient(n_blocks);
+  std::vector<double*> jacobian_ptrs(n_blocks, nullptr);
+  for (size_t i = 0; i < n_blocks; ++i) {
+    if (slots.count(r.parameter_blocks[i]) == 0) continue;  // constant
+    ambient[i].resize(m, r.cost->parameter_block_sizes()[i]);
+    jacobian_ptrs[i] = ambient[i].data();
+  }
+  Eigen::VectorXd residual(m);
+  std::vector<const double*> params(r.parameter_blocks.begin(),
+                                    r.parameter_blocks.end());
+  if (!r.cost->Evaluate(params.data(), residual.data(), jacobian_ptrs.data()) ||
+      !residual.allFinite()) {
+    return false;
+  }
+  // Robust loss, first order: rho(s) with s = |r|^2 is replaced by its
+  // Gauss-Newton model with r~ = sqrt(rho') r, J~ = sqrt(rho') J, which keeps
+  // the gradient exact (rho' J^T r). No Triggs correction (the rho'' term of
+  // the Hessian): Ceres' own Corrector drops it whenever rho'' <= 0, which
+  // holds everywhere for Huber, Cauchy, soft-L1 and arctan, so for those the
+  // prior holds exactly the Hessian Ceres would have used; where rho'' < 0 the
+  // term could make H indefinite, which a prior must never be.
+  double scale = 1.0;
+  if (r.loss != nullptr) {
+    double rho[3];
+    r.loss->Evaluate(residual.squaredNorm(), rho);
+    if (!std::isfinite(rho[1]) || rho[1] < 0.0) return false;
+    scale = std::sqrt(rho[1]);
+  }
+  residual *= scale;
+  std::vector<std::pair<int, Eigen::MatrixXd>> columns;  // offset, J~ (tangent)
+  for (size_t i = 0; i < n_blocks; ++i) {
+    if (jacobian_ptrs[i] == nullptr) continue;
+    const Slot& slot = slots.at(r.parameter_blocks[i]);
+    Eigen::MatrixXd tangent = ambient[i];
+    if (slot.block->manifold != nullptr) {
+      RowMajorMatrix plus(slot.block->size, slot.block->TangentSize());
+      slot.block->manifold->PlusJacobian(slot.block->values, plus.data());
+      tangent = ambient[i] * plus;
+    }
+    if (!tangent.allFinite()) return false;
+    columns.emplace_back(slot.offset, scale * tangent);
+  }
+  for (const auto& [oi, Ji] : columns) {
+    b->segment(oi, Ji.cols()) -= Ji.transpose() * residual;
+    for (const auto& [oj, Jj] : columns) {
+      H->block(oi, oj, Ji.cols(), Jj.cols()) += Ji.transpose() * Jj;
+    }
+  }
+  return true;
+}
+
+// Pseudo-inverse of the symmetric H_mm by eigen-decomposition; eigenvalues
+// below floor * max count as zero. Returns the number of dropped directions.
+int PseudoInverse(const Eigen::MatrixXd& H_mm, double floor,
+                  Eigen::MatrixXd* inverse) {
+  if (H_mm.rows() == 0) {  // nothing marginalised: H* = H_kk
+    inverse->resize(0, 0);
+    return 0;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+      0.5 * (H_mm + H_mm.transpose()));
+  const Eigen::VectorXd& lambda = eig.eigenvalues();
+  const double threshold = floor * std::max(lambda.maxCoeff(), 0.0);
+  Eigen::VectorXd lambda_inv(lambda.size());
+  int dropped = 0;
+  for (int i = 0; i < lambda.size(); ++i) {
+    const bool informative = lambda[i] > threshold && lambda[i] > 0.0;
+    lambda_inv[i] = informative ? 1.0 / lambda[i] : 0.0;
+    dropped += informative ? 0 : 1;
+  }
+  *inverse = eig.eigenvectors() * lambda_inv.asDiagonal() *
+             eig.eigenvectors().transpose();
+  return dropped;
+}
+
+// H* = H_kk - H_km H_mm^+ H_mk (symmetrised) and b* = b_k - H_km H_mm^+ b_m
+// for H, b ordered [marginalised (m_size) | kept]. Returns the rank
+// deficiency of H_mm.
+int SchurComplement(const Eigen::MatrixXd& H, const Eigen::VectorXd& b,
+                    int m_size, double floor, Eigen::MatrixXd* H_star,
+                    Eigen::VectorXd* b_star) {
+  const int k_size = static_cast<int>(H.rows()) - m_size;
+  Eigen::MatrixXd H_mm_inv;
+  const int deficiency =
+      PseudoInverse(H.topLeftCorner(m_size, m_size), floor, &H_mm_inv);
+  const Eigen::MatrixXd H_km_H_mm_inv =
+      H.bottomLeftCorner(k_size, m_size) * H_mm_inv;
+  *H_star = H.bottomRightCorner(k_size, k_size) -
+            H_km_H_mm_inv * H.topRightCorner(m_size, k_size);
+  *H_star = 0.5 * (*H_star + H_star->transpose());
+  *b_star = b.tail(k_size) - H_km_H_mm_inv * b.head(m_size);
+  return deficiency;
+}
+
+// H* = V S V^T with S floored at floor * max(S); J = sqrt(S) V^T and
+// r0 = -sqrt(S)^-1 V^T b*, so that J^T J = V S V^T and J^T r0 = -b* (V is
+// orthonormal). Returns the number of floored eigenvalues, or -1 when H* holds
+// no information at all (largest eigenvalue not > 0) or cannot be decomposed.
+int SquareRoot(const Eigen::MatrixXd& H_star, const Eigen::VectorXd& b_star,
+               double floor, Eigen::MatrixXd* J, Eigen::VectorXd* r0) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H_star);
+  if (eig.info() != Eigen::Success) return -1;
+  const double lambda_max = eig.eigenvalues().maxCoeff();
+  if (!(lambda_max > 0.0)) return -1;
+  Eigen::VectorXd s = eig.eigenvalues();
+  // The floor is relative but never below the smallest normal double, so
+  // that 1 / sqrt(s) stays finite.
+  const double s_min =
+      std::max(floor * lambda_max, std::numeric_limits<double>::min());
+  int floored = 0;
+  for (int i = 0; i < s.size(); ++i) {
+    if (s[i] < s_min) {
+      s[i] = s_min;
+      ++floored;
+    }
+  }
+  const Eigen::VectorXd sqrt_s = s.cwiseSqrt();
+  *J = sqrt_s.asDiagonal() * eig.eigenvectors().transpose();
+  *r0 = -(sqrt_s.cwiseInverse().asDiagonal() *
+          (eig.eigenvectors().transpose() * b_star));
+  return floored;
+}
+
+}  // namespace
+
+bool MarginalizationOptions::Validate(std::string* message) const {
+  for (double floor : {marginalized_eigenvalue_floor, prior_eigenvalue_floor}) {
+    if (!(floor >= 0.0 && floor < 1.0)) {
+      *message = "eigenvalue floors must be in [0, 1) (got " +
+                 std::to_string(floor) + ")";
+      return false;
+    }
+  }
+  return true;
+}
+
+MarginalizationResult Marginalize(const MarginalizationProblem& problem,
+                                  const MarginalizationOptions& options) {
+  std::string error;
+  if (!options.Validate(&error)) return Failure(error);
+  error = CheckProblem(problem);
+  if (!error.empty()) return Failure(error);
+
+  std::map<const double*, Slot> slots;
+  std::vector<const MarginalizationParameterBlock*> kept;
+  const int m_size = AssignSlots(problem, &slots, &kept);
+  int total = 0;
+  for (const auto& [values, slot] : slots) total += slot.block->TangentSize();
+  const int k_size = total - m_size;
+  if (k_size == 0) return Failure("no block is kept");
+  for (const MarginalizationParameterBlock* p : kept) {
+    if (p->manifold != nullptr &&
+        dynamic_cast<const PoseManifold*>(p->manifold) == nullptr) {
+      return Failure("parameter block " +
+                     std::to_string(p - problem.parameter_blocks.data()) +
+                     " is kept but has a manifold other than PoseManifold");
+    }
+  }
+
+  MarginalizationResult result;
+  // A failure after evaluation keeps the counters (they say why).
+  auto fail = [&result](const std::string& message) {
+    result.status = MarginalizationStatus::kFailed;
+    result.message = message;
+    result.jacobian.resize(0, 0);
+    result.residual0.resize(0);
+    return result;
+  };
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(total, total);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(total);
+  for (const auto& r : problem.residual_blocks) {
+    if (Accumulate(r, slots, &H, &b)) {
+      ++result.num_residual_blocks_used;
+    } else {
+      ++result.num_skipped_residual_blocks;
+    }
+  }
+
+  Eigen::MatrixXd H_star;
+  Eigen::VectorXd b_star;
+  result.marginalized_rank_deficiency = SchurComplement(
+      H, b, m_size, options.marginalized_eigenvalue_floor, &H_star, &b_star);
+  if (!H_star.allFinite() || !b_star.allFinite()) {
+    return fail("the Schur complement is not finite");
+  }
+  result.num_floored_eigenvalues =
+      SquareRoot(H_star, b_star, options.prior_eigenvalue_floor,
+                 &result.jacobian, &result.residual0);
+  if (result.num_floored_eigenvalues < 0) {
+    return fail("no information is left on the kept blocks (" +
+                std::to_string(result.num_skipped_residual_blocks) +
+                " residual blocks skipped)");
+  }
+  if (!result.jacobian.allFinite() || !result.residual0.allFinite()) {
+    return fail("the prior's J or r0 is not finite");
+  }
+  result.information = H_star;
+  result.gradient = -b_star;
+  for (const MarginalizationParameterBlock* p : kept) {
+    result.kept_parameter_blocks.push_back(p->values);
+    result.kept_blocks.push_back(
+        {p->manifold ? PriorBlockKind::kPose : PriorBlockKind::kEuclidean,
+         std::vector<double>(p->values, p->values + p->size)});
+  }
+  const bool degenerate = result.num_skipped_residual_blocks > 0 ||
+                          result.marginalized_rank_deficiency > 0;
+  result.status = degenerate ? MarginalizationStatus::kDegenerate
+                             : MarginalizationStatus::kOk;
+  if (degenerate) {
+    result.message = std::to_string(result.num_skipped_residual_blocks) +
+                     " residual blocks skipped, H_mm rank deficient by " +
+                     std::to_string(result.marginalized_rank_deficiency);
+  }
+  return result;
+}
+
+std::unique_ptr<MarginalizationPrior> MarginalizationResult::MakePrior() const {
+  return std::make_unique<MarginalizationPrior>(kept_blocks, jacobian,
+                                                residual0);
+}
+
+MarginalizationResidualBlock PriorResidualBlock(
+    const MarginalizationResult& result, const MarginalizationPrior* prior) {
+  return {prior, nullptr, result.kept_parameter_blocks};
+}
+
+std::vector<MarginalizationParameterBlock> KeptParameterBlocks(
+    const MarginalizationResult& result, const ceres::Manifold* pose_manifold) {
+  std::vector<MarginalizationParameterBlock> blocks;
+  for (size_t i = 0; i < result.kept_blocks.size(); ++i) {
+    const PriorBlock& kb = result.kept_blocks[i];
+    blocks.push_back(
+        {result.kept_parameter_blocks[i], kb.AmbientSize(),
+         kb.kind == PriorBlockKind::kPose ? pose_manifold : nullptr, false});
+  }
+  return blocks;
+}
+
+}  // namespace vio

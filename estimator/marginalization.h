@@ -1,0 +1,140 @@
+#ifndef VIO_ESTIMATOR_MARGINALIZATION_H_
+#define VIO_ESTIMATOR_MARGINALIZATION_H_
+
+// Marginalisation: removes parameter blocks from the window and leaves their
+// information on the remaining blocks as a MarginalizationPrior.
+//
+// Given the residual blocks that touch the leaving states, evaluated at the
+// current values (which become the prior's linearisation point x0):
+//   1. each block's tangent Jacobian J_i = J_ambient * PlusJacobian(x) and
+//      residual r_i, scaled by sqrt(rho'(|r_i|^2)) when it has a robust loss
+//      (first order only, see marginalization.cc for why no Triggs term);
+//   2. the dense tangent-space system H = sum J_i^T J_i, b = -sum J_i^T r_i,
+//      ordered [marginalised m | kept k];
+//   3. the Schur complement
+//        H* = H_kk - H_km H_mm^+ H_mk,   b* = b_k - H_km H_mm^+ b_m,
+//      with H_mm^+ the eigen-decomposition pseudo-inverse (eigenvalues below a
+//      relative floor count as "no information" and are dropped);
+//   4. H* symmetrised, H* = V S V^T, S floored at a relative epsilon, and
+//        J = sqrt(S) V^T,   r0 = -sqrt(S)^-1 V^T b*
+//      so that J^T J = H* and J^T r0 = -b*: the prior r = r0 + J (x (-) x0)
+//      has the Schur complement's Hessian and gradient at x0.
+// References: Sibley et al., JFR 2010; Leutenegger et al., IJRR 2015 (the
+// same construction; the prior stores a square root of H*).
+//
+// A previous prior is re-marginalised like any other residual block (see
+// PriorResidualBlock below).
+
+#include <ceres/cost_function.h>
+#include <ceres/loss_function.h>
+#include <ceres/manifold.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "factors/marginalization_prior.h"
+
+namespace vio {
+
+// A parameter block as the marginalisation sees it.
+struct MarginalizationParameterBlock {
+  double* values = nullptr;  // current values, ambient layout (not owned)
+  int size = 0;              // ambient size
+  // nullptr: Euclidean. A kept block needs nullptr or a PoseManifold (the two
+  // kinds a prior can hold); a marginalised block may have any manifold.
+  const ceres::Manifold* manifold = nullptr;
+  bool constant = false;  // held fixed in the problem: no columns, not kept
+
+  int TangentSize() const { return manifold ? manifold->TangentSize() : size; }
+};
+
+// A residual block: what ceres::Problem::AddResidualBlock was given.
+struct MarginalizationResidualBlock {
+  const ceres::CostFunction* cost = nullptr;  // not owned
+  const ceres::LossFunction* loss = nullptr;  // nullptr: squared loss
+  std::vector<double*> parameter_blocks;      // in the cost's order
+};
+
+// Everything one marginalisation step needs.
+struct MarginalizationProblem {
+  // Every block any residual block touches (the marginalised ones included).
+  std::vector<MarginalizationParameterBlock> parameter_blocks;
+  // Every residual block that touches a marginalised block (and only those:
+  // the others stay in the window as they are).
+  std::vector<MarginalizationResidualBlock> residual_blocks;
+  std::vector<const double*> marginalized;  // the blocks that leave
+};
+
+struct MarginalizationOptions {
+  // Eigenvalues of H_mm below this fraction of its largest are treated as
+  // directions without information (pseudo-inverse), [-].
+  double marginalized_eigenvalue_floor = 1e-12;
+  // Eigenvalues of H* are floored at this fraction of its largest, so that
+  // sqrt(S)^-1 is finite; [-]. The added information, 1e-10 of the largest,
+  // is far below anything a measurement carries.
+  double prior_eigenvalue_floor = 1e-10;
+
+  // True when both floors are finite and in [0, 1); else false + message.
+  bool Validate(std::string* message) const;
+};
+
+enum class MarginalizationStatus {
+  kOk,          // prior built from every residual block; H_mm full rank
+  kDegenerate,  // prior built, but residual blocks were skipped or H_mm was
+                // rank deficient: see the counters
+  kFailed,      // no prior: invalid input or no information left (message)
+};
+
+// The outcome of one step, ready to become a MarginalizationPrior.
+struct MarginalizationResult {
+  MarginalizationStatus status = MarginalizationStatus::kFailed;
+  std::string message;  // why it failed or what was degenerate
+
+  int num_residual_blocks_used = 0;
+  // Residual blocks whose Evaluate failed or returned a non-finite value, or
+  // whose loss gave a non-finite or negative rho'; left out of the prior.
+  int num_skipped_residual_blocks = 0;
+  int marginalized_rank_deficiency = 0;  // dropped directions of H_mm
+  int num_floored_eigenvalues = 0;       // eigenvalues of H* raised to floor
+
+  // The kept blocks, in the prior's parameter order, and their description
+  // (kind and x0 = the values at marginalisation time).
+  std::vector<double*> kept_parameter_blocks;
+  std::vector<PriorBlock> kept_blocks;
+
+  Eigen::MatrixXd information;  // H* (symmetric, before the floor)
+  Eigen::VectorXd gradient;     // -b*: the cost's gradient on the kept blocks
+  Eigen::MatrixXd jacobian;     // J = sqrt(S) V^T
+  Eigen::VectorXd residual0;    // r0 = -sqrt(S)^-1 V^T b*
+
+  bool ok() const { return status != MarginalizationStatus::kFailed; }
+
+  // The prior for the next window (Ceres takes ownership when it is added
+  // with kept_parameter_blocks). Requires ok().
+  std::unique_ptr<MarginalizationPrior> MakePrior() const;
+};
+
+// Runs one marginalisation step. Never throws on bad values and never returns
+// a non-finite J or r0: problems are reported through status and the
+// counters. A kept block is one that is listed, touched by a residual block,
+// not constant and not marginalised.
+MarginalizationResult Marginalize(const MarginalizationProblem& problem,
+                                  const MarginalizationOptions& options = {});
+
+// The residual block of a prior made from result, for re-marginalising it
+// (prior must outlive the next step). Its blocks' manifolds: a PoseManifold
+// for pose blocks, nullptr otherwise; the caller lists them as parameter
+// blocks too (KeptParameterBlocks below).
+MarginalizationResidualBlock PriorResidualBlock(
+    const MarginalizationResult& result, const MarginalizationPrior* prior);
+
+// The parameter-block descriptions of result's kept blocks, with manifold for
+// the pose blocks.
+std::vector<MarginalizationParameterBlock> KeptParameterBlocks(
+    const MarginalizationResult& result, const ceres::Manifold* pose_manifold);
+
+}  // namespace vio
+
+#endif  // VIO_ESTIMATOR_MARGINALIZATION_H_
