@@ -8,7 +8,7 @@
 // Per frame (after a static initialisation):
 //   1. the IMU interval from the newest window frame is preintegrated and the
 //      new frame's state predicted from it;
-//   2. the frame is a keyframe when its mean parallax to the last keyframe
+//   2. the frame is a keyframe when its median parallax to the last keyframe
 //      (pixels) or its tracked-feature count says so (DecideKeyframe);
 //   3. a non-keyframe second-newest frame is dropped: its IMU interval is
 //      merged into the new one and its observations leave the window;

@@ -17,7 +17,7 @@ namespace vio {
 // When a new frame becomes a keyframe (the newest frame against the last
 // keyframe, over the features seen in both).
 struct KeyframeOptions {
-  double min_parallax_px = 20.0;  // mean parallax that makes a keyframe [px]
+  double min_parallax_px = 20.0;  // median parallax making a keyframe [px]
   int min_tracked_features = 50;  // fewer tracked features: keyframe [-]
 };
 

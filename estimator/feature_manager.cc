@@ -56,19 +56,20 @@ FrameAddStats FeatureManager::AddFrame(
   return stats;
 }
 
-double FeatureManager::MeanParallax(int64_t frame_a, int64_t frame_b,
-                                    int* common) const {
-  double sum = 0.0;
-  int n = 0;
+double FeatureManager::MedianParallax(int64_t frame_a, int64_t frame_b,
+                                      int* common) const {
+  std::vector<double> parallax;
   for (const auto& [id, l] : landmarks_) {
     const Sighting* a = FindSighting(l, frame_a, 0);
     const Sighting* b = FindSighting(l, frame_b, 0);
     if (a == nullptr || b == nullptr) continue;
-    sum += (a->xy - b->xy).norm();
-    ++n;
+    parallax.push_back((a->xy - b->xy).norm());
   }
-  *common = n;
-  return n > 0 ? sum / n : 0.0;
+  *common = static_cast<int>(parallax.size());
+  if (parallax.empty()) return 0.0;
+  const auto mid = parallax.begin() + parallax.size() / 2;
+  std::nth_element(parallax.begin(), mid, parallax.end());
+  return *mid;
 }
 
 Eigen::Vector3d FeatureManager::WorldPoint(const Landmark& landmark,
@@ -167,11 +168,11 @@ KeyframeDecision DecideKeyframe(const FeatureManager& features,
                                 double focal_px,
                                 const KeyframeOptions& options) {
   KeyframeDecision d;
-  d.mean_parallax_px =
-      focal_px *
-      features.MeanParallax(last_keyframe_id, new_frame_id, &d.common_features);
+  d.parallax_px =
+      focal_px * features.MedianParallax(last_keyframe_id, new_frame_id,
+                                         &d.common_features);
   d.is_keyframe = d.common_features < options.min_tracked_features ||
-                  d.mean_parallax_px >= options.min_parallax_px;
+                  d.parallax_px >= options.min_parallax_px;
   return d;
 }
 

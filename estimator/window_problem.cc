@@ -43,6 +43,12 @@ WindowProblem::WindowProblem(Window* window, FeatureManager* features,
   }
   if (settings_.estimate_time_offset) {
     AddBlock(&window_->t_d, 1, /*pose=*/false, /*constant=*/false);
+    // Unobservable while the camera barely moves: keep it to a plausible
+    // range instead of letting it wander.
+    problem_.SetParameterLowerBound(&window_->t_d, 0,
+                                    -settings_.max_time_offset_s);
+    problem_.SetParameterUpperBound(&window_->t_d, 0,
+                                    settings_.max_time_offset_s);
   }
 }
 

@@ -49,6 +49,7 @@ struct WindowProblemSettings {
   // Camera-0 factors between frames become TimedReprojectionFactors on the
   // window's t_d block; camera-1 factors stay untimed.
   bool estimate_time_offset = false;
+  double max_time_offset_s = 0.02;  // |t_d| bound while estimated [s]
   int max_landmarks = 120;
 };
 

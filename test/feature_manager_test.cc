@@ -173,7 +173,7 @@ TEST(DecideKeyframe, UsesParallaxInPixelsAndTrackedCount) {
   fm.AddFrame(0, scene.Observe(0, 0, 60));
   fm.AddFrame(1, scene.Observe(1, 0, 60));
   int common = 0;
-  const double parallax = fm.MeanParallax(0, 1, &common);
+  const double parallax = fm.MedianParallax(0, 1, &common);
   EXPECT_EQ(common, 60);
   // 0.2 m sideways at 3-8 m: 0.025-0.067 on the normalised plane.
   EXPECT_GT(parallax, 0.02);
@@ -183,12 +183,25 @@ TEST(DecideKeyframe, UsesParallaxInPixelsAndTrackedCount) {
   options.min_parallax_px = 1.01 * 460.0 * parallax;
   KeyframeDecision d = DecideKeyframe(fm, 0, 1, 460.0, options);
   EXPECT_FALSE(d.is_keyframe);
-  EXPECT_NEAR(d.mean_parallax_px, 460.0 * parallax, 1e-9);
+  EXPECT_NEAR(d.parallax_px, 460.0 * parallax, 1e-9);
   options.min_parallax_px = 0.99 * 460.0 * parallax;
   EXPECT_TRUE(DecideKeyframe(fm, 0, 1, 460.0, options).is_keyframe);
   options.min_parallax_px = 1e3;
   options.min_tracked_features = 61;
   EXPECT_TRUE(DecideKeyframe(fm, 0, 1, 460.0, options).is_keyframe);
+}
+
+TEST(DecideKeyframe, IgnoresAFewTrackerSlips) {
+  const Scene scene(60);
+  FeatureManager still(1);
+  still.AddFrame(0, scene.Observe(0, 0, 60));
+  auto obs = scene.Observe(0, 0, 60);
+  for (int i = 0; i < 6; ++i) obs[i].xy += Eigen::Vector2d(0.5, -0.4);  // 10 %
+  still.AddFrame(1, obs);
+  KeyframeOptions options;
+  const KeyframeDecision d = DecideKeyframe(still, 0, 1, 460.0, options);
+  EXPECT_EQ(d.parallax_px, 0.0);
+  EXPECT_FALSE(d.is_keyframe);
 }
 
 }  // namespace

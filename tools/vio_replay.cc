@@ -184,6 +184,9 @@ int main(int argc, char** argv) {
     fs::create_directories(args.out);
     const Trajectory estimate = WriteOutputs(args.out, outputs);
     PrintSummary(estimator.summary(), frames, wall_s);
+    std::printf("  time offset t_d      %.6f s (%s)\n",
+                estimator.time_offset_s(),
+                config.estimator.estimate_time_offset ? "estimated" : "fixed");
     if (!seq.data.ground_truth.empty()) {
       Evaluate(args.out, estimate, seq.data.ground_truth);
     }

@@ -127,11 +127,14 @@ void PrintSummary(const EstimatorSummary& s,
       1e3 * Quantile(s.marginalization_cpu_time_s, 0.5),
       1e3 * Quantile(s.marginalization_cpu_time_s, 1.0),
       (long long)s.marginalizations, (long long)s.marginalization_failures);
-  std::printf("  landmarks per step    median %.0f; outliers removed %lld\n",
-              Quantile(std::vector<double>(s.landmarks_per_step.begin(),
-                                           s.landmarks_per_step.end()),
-                       0.5),
-              (long long)s.outlier_landmarks_removed);
+  std::printf(
+      "  landmarks per step    median %.0f; outliers removed: %lld "
+      "sightings, %lld landmarks\n",
+      Quantile(std::vector<double>(s.landmarks_per_step.begin(),
+                                   s.landmarks_per_step.end()),
+               0.5),
+      (long long)s.outlier_sightings_removed,
+      (long long)s.outlier_landmarks_removed);
   std::printf(
       "  skipped input         imu non-finite %lld, imu out of order "
       "%lld, observations %lld, frames without observations %lld\n",
