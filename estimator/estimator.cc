@@ -273,32 +273,9 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   if (prior_) problem.AddPrior(prior_.get(), prior_blocks_);
   const bool imu_ok = problem.AddImuFactors();
   const int landmarks = problem.AddVisualFactors();
-  summary_.landmarks_per_step.push_back(landmarks);
-  const double cpu_start = ThreadCpuSeconds();
-  const ceres::Solver::Summary solve = problem.Solve(options_.solver);
-  summary_.solver_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
-  summary_.solver_time_s.push_back(solve.total_time_in_seconds);
-  summary_.solver_jacobian_time_s += solve.jacobian_evaluation_time_in_seconds;
-  summary_.solver_residual_time_s += solve.residual_evaluation_time_in_seconds;
-  summary_.solver_linear_time_s += solve.linear_solver_time_in_seconds;
-  summary_.solver_preprocess_time_s += solve.preprocessor_time_in_seconds;
-  summary_.solver_iterations += static_cast<int64_t>(solve.iterations.size());
-  if (solve.termination_type == ceres::FAILURE) ++summary_.solver_failures;
+  Solve(&problem);
 
-  WindowFrame& newest = *window_.frames.back();
-  StepCheck check;
-  const bool full = window_.NumKeyframes() >= options_.window_size;
-  check.landmarks_in_problem =
-      full ? landmarks : options_.failure.min_tracked_landmarks;
-  const EstimatorOutput solved = OutputOf(newest, frame.t_ns);
-  check.p_before = predicted.p_w_b;
-  check.q_before = predicted.q_w_b;
-  check.p_after = solved.p_w_b;
-  check.q_after = solved.q_w_b;
-  check.v_after = solved.v_w;
-  check.b_a = solved.b_a;
-  check.b_g = solved.b_g;
-  Failure failure = DetectFailure(check, options_.failure);
+  Failure failure = CheckStep(predicted, landmarks, frame.t_ns);
   if (failure == Failure::kNone && !imu_ok) failure = Failure::kNonFinite;
   if (failure != Failure::kNone) {
     Reset(frame.t_ns, failure);
@@ -307,20 +284,58 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
     const EstimatorOutput restart =
         Finite(predicted) ? predicted : last_output_;
     StartWindow(frame, t_imu_ns, restart, options_.state_prior.velocity_moving);
-    *out = OutputOf(*window_.frames.back(), frame.t_ns);
-    return true;
+  } else {
+    Slide(problem);
   }
+  *out = OutputOf(*window_.frames.back(), frame.t_ns);
+  return true;
+}
 
+void Estimator::Solve(WindowProblem* problem) {
+  summary_.landmarks_per_step.push_back(problem->landmarks_used());
+  const double cpu_start = ThreadCpuSeconds();
+  const ceres::Solver::Summary solve = problem->Solve(options_.solver);
+  summary_.solver_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
+  summary_.solver_time_s.push_back(solve.total_time_in_seconds);
+  summary_.solver_jacobian_time_s += solve.jacobian_evaluation_time_in_seconds;
+  summary_.solver_residual_time_s += solve.residual_evaluation_time_in_seconds;
+  summary_.solver_linear_time_s += solve.linear_solver_time_in_seconds;
+  summary_.solver_preprocess_time_s += solve.preprocessor_time_in_seconds;
+  summary_.solver_iterations += static_cast<int64_t>(solve.iterations.size());
+  if (solve.termination_type == ceres::FAILURE) ++summary_.solver_failures;
+}
+
+Failure Estimator::CheckStep(const EstimatorOutput& predicted, int landmarks,
+                             int64_t t_ns) const {
+  const EstimatorOutput solved = OutputOf(*window_.frames.back(), t_ns);
+  StepCheck check;
+  // Landmarks are only demanded of a full window: a still start has none.
+  const bool full = window_.NumKeyframes() >= options_.window_size;
+  check.landmarks_in_problem =
+      full ? landmarks : options_.failure.min_tracked_landmarks;
+  check.p_before = predicted.p_w_b;
+  check.q_before = predicted.q_w_b;
+  check.p_after = solved.p_w_b;
+  check.q_after = solved.q_w_b;
+  check.v_after = solved.v_w;
+  check.b_a = solved.b_a;
+  check.b_g = solved.b_g;
+  return DetectFailure(check, options_.failure);
+}
+
+void Estimator::Slide(const WindowProblem& problem) {
   const OutlierReport outliers =
       problem.Outliers(options_.landmarks.outlier_threshold_px);
-  const bool keyframe = newest.keyframe;
-  if (keyframe) {
+  const WindowFrame& newest = *window_.frames.back();
+  const bool marginalize =
+      newest.keyframe && window_.NumKeyframes() > options_.window_size;
+  if (newest.keyframe) {
     last_keyframe_id_ = newest.id;
     ++summary_.keyframes;
   }
-  if (keyframe && window_.NumKeyframes() > options_.window_size) {
-    MarginalizeOldest(problem, outliers);
-  }
+  // The marginalisation evaluates the problem's factors: before any
+  // landmark they refer to is removed.
+  if (marginalize) MarginalizeOldest(problem, outliers);
   for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
   for (const OutlierReport::BadSighting& b : outliers.sightings) {
     features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
@@ -329,14 +344,12 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
       static_cast<int64_t>(outliers.landmarks.size());
   summary_.outlier_sightings_removed +=
       static_cast<int64_t>(outliers.sightings.size());
-  if (keyframe && window_.NumKeyframes() > options_.window_size) {
+  if (marginalize) {
     features_.RemoveFrame(window_.frames.front()->id, PoseFn());
     window_.frames.pop_front();
     window_.frames.front()->imu.reset();
   }
   UpdateImuLinearization();
-  *out = OutputOf(*window_.frames.back(), frame.t_ns);
-  return true;
 }
 
 WindowProblemSettings Estimator::ProblemSettings() const {

@@ -137,6 +137,10 @@ class Estimator {
   bool AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
                    EstimatorOutput* predicted);
   void DropSecondNewest();
+  void Solve(WindowProblem* problem);
+  Failure CheckStep(const EstimatorOutput& predicted, int landmarks,
+                    int64_t t_ns) const;
+  void Slide(const WindowProblem& problem);
   void MarginalizeOldest(const WindowProblem& problem,
                          const OutlierReport& outliers);
   void UpdateImuLinearization();
