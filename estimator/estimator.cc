@@ -2,6 +2,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -120,8 +121,9 @@ EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
   }
   have_frame_ = true;
   last_frame_t_ns_ = frame.t_ns;
+  const FeatureFrame lagged = LaggedVelocities(frame);
   if (!initialized_) {
-    if (!TryInitialize(frame, t_imu_ns)) {
+    if (!TryInitialize(lagged, t_imu_ns)) {
       ++summary_.frames_before_init;
       EstimatorOutput o;
       o.t_ns = frame.t_ns;
@@ -132,10 +134,42 @@ EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
     return last_output_ = OutputOf(*window_.frames.back(), frame.t_ns);
   }
   EstimatorOutput out;
-  if (!ProcessFrame(frame, t_imu_ns, &out)) return skipped;
+  if (!ProcessFrame(lagged, t_imu_ns, &out)) return skipped;
   ++summary_.frames_processed;
   TrimImu();
   return last_output_ = out;
+}
+
+FeatureFrame Estimator::LaggedVelocities(const FeatureFrame& frame) {
+  // The time-offset factor shifts xy_k by (t_d - t_d_k) v_k. With the
+  // frontend's v_k = (xy_k - xy_(k-1)) / dt, v_k carries the noise of xy_k
+  // itself and the estimate is drawn towards t_d - t_d_k = dt (errors in
+  // variables). The velocity of the two previous observations of the track
+  // does not share that noise.
+  FeatureFrame out = frame;
+  std::map<std::pair<int64_t, int>, TrackHistory> next;
+  for (FeatureObservation& o : out.observations) {
+    const std::pair<int64_t, int> key(o.feature_id, o.camera);
+    TrackHistory h;
+    const auto it = tracks_.find(key);
+    if (it != tracks_.end()) h = it->second;
+    if (options_.estimate_time_offset) {
+      o.velocity = Eigen::Vector2d::Zero();
+      if (h.count >= 2 && h.t1_ns > h.t0_ns) {
+        o.velocity =
+            (h.xy1 - h.xy0) / (1e-9 * static_cast<double>(h.t1_ns - h.t0_ns));
+      }
+    }
+    h.t0_ns = h.t1_ns;
+    h.xy0 = h.xy1;
+    h.t1_ns = frame.t_ns;
+    h.xy1 = o.xy;
+    h.count = std::min(h.count + 1, 2);
+    next[key] = h;
+  }
+  // Tracks not seen in this frame have ended.
+  tracks_.swap(next);
+  return out;
 }
 
 bool Estimator::TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns) {
