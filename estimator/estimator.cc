@@ -1,0 +1,436 @@
+#include "estimator/estimator.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+#include "estimator/marginalization.h"
+#include "estimator/state_prior.h"
+#include "estimator/window_problem.h"
+#include "preintegration/imu_preintegration.h"
+
+namespace vio {
+namespace {
+
+void Require(bool ok, const std::string& what, const std::string& message) {
+  if (!ok) throw std::invalid_argument("Estimator: " + what + message);
+}
+
+int64_t SecondsToNs(double s) { return std::llround(s * 1e9); }
+
+bool Finite(const EstimatorOutput& o) {
+  return o.p_w_b.allFinite() && o.q_w_b.coeffs().allFinite() &&
+         o.v_w.allFinite() && o.b_a.allFinite() && o.b_g.allFinite();
+}
+
+double Seconds(std::chrono::steady_clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
+// CPU time of the calling thread [s]: what a step costs, whatever else runs
+// on the machine.
+double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace
+
+Estimator::Estimator(const EstimatorOptions& options,
+                     const VisualFactorOptions& visual, const ImuNoise& noise,
+                     const PreintegrationOptions& preintegration,
+                     const std::vector<EstimatorCamera>& cameras)
+    : options_(options),
+      visual_(visual),
+      noise_(noise),
+      preintegration_(preintegration),
+      cameras_(cameras),
+      static_init_(options.static_init, options.gravity_magnitude),
+      features_(options.use_stereo ? 2 : 1) {
+  std::string message;
+  Require(options.Validate(&message), "options.", message);
+  Require(visual.Validate(&message), "visual.", message);
+  Require(noise.Validate(&message), "imu noise: ", message);
+  Require(preintegration.Validate(&message), "preintegration: ", message);
+  Require(!cameras.empty() && cameras.size() <= kMaxCameras, "",
+          "needs 1 or 2 cameras");
+  Require(!options.use_stereo || cameras.size() == 2, "",
+          "use_stereo needs 2 cameras");
+  window_.num_cameras = options.use_stereo ? 2 : 1;
+  window_.t_d = options.initial_time_offset_s;
+  for (int c = 0; c < window_.num_cameras; ++c) {
+    Require(cameras[c].focal_px > 0.0 && std::isfinite(cameras[c].focal_px), "",
+            "camera focal length must be > 0");
+    window_.extrinsics[c] = PoseArray(cameras[c].T_b_c);
+  }
+}
+
+Estimator::~Estimator() = default;
+
+void Estimator::AddImu(const ImuSample& sample) {
+  if (!sample.acc.allFinite() || !sample.gyr.allFinite()) {
+    ++summary_.imu_non_finite;
+    return;
+  }
+  if (!imu_.empty() && sample.t_ns <= imu_.back().t_ns) {
+    ++summary_.imu_out_of_order;
+    return;
+  }
+  ++summary_.imu_samples;
+  imu_.push_back(sample);
+  if (!initialized_) static_init_.AddSample(sample);
+}
+
+CameraPoseFn Estimator::PoseFn() const {
+  return [this](int64_t id, int camera) { return window_.T_w_c(id, camera); };
+}
+
+EstimatorOutput Estimator::OutputOf(const WindowFrame& f, int64_t t_ns) const {
+  EstimatorOutput o;
+  o.t_ns = t_ns;
+  o.processed = true;
+  o.initialized = true;
+  o.keyframe = f.keyframe;
+  o.p_w_b = Eigen::Vector3d(f.pose.data() + kPoseP);
+  o.q_w_b = Eigen::Quaterniond(f.pose.data() + kPoseQ).normalized();
+  o.v_w = Eigen::Vector3d(f.speed_bias.data() + kSbV);
+  o.b_a = Eigen::Vector3d(f.speed_bias.data() + kSbBa);
+  o.b_g = Eigen::Vector3d(f.speed_bias.data() + kSbBg);
+  return o;
+}
+
+EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
+  ++summary_.frames;
+  EstimatorOutput skipped = last_output_;
+  skipped.t_ns = frame.t_ns;
+  skipped.processed = false;
+  if (have_frame_ && frame.t_ns <= last_frame_t_ns_) {
+    ++summary_.frames_out_of_order;
+    return skipped;
+  }
+  const int64_t t_imu_ns = frame.t_ns + SecondsToNs(window_.t_d);
+  if (imu_.empty() || imu_.back().t_ns < t_imu_ns) {
+    ++summary_.frames_without_imu;
+    return skipped;
+  }
+  have_frame_ = true;
+  last_frame_t_ns_ = frame.t_ns;
+  const FeatureFrame lagged = LaggedVelocities(frame);
+  if (!initialized_) {
+    if (!TryInitialize(lagged, t_imu_ns)) {
+      ++summary_.frames_before_init;
+      EstimatorOutput o;
+      o.t_ns = frame.t_ns;
+      o.processed = true;
+      return last_output_ = o;
+    }
+    ++summary_.frames_processed;
+    return last_output_ = OutputOf(*window_.frames.back(), frame.t_ns);
+  }
+  EstimatorOutput out;
+  if (!ProcessFrame(lagged, t_imu_ns, &out)) return skipped;
+  ++summary_.frames_processed;
+  TrimImu();
+  return last_output_ = out;
+}
+
+FeatureFrame Estimator::LaggedVelocities(const FeatureFrame& frame) {
+  // The time-offset factor shifts xy_k by (t_d - t_d_k) v_k. With the
+  // frontend's v_k = (xy_k - xy_(k-1)) / dt, v_k carries the noise of xy_k
+  // itself and the estimate is drawn towards t_d - t_d_k = dt (errors in
+  // variables). The velocity of the two previous observations of the track
+  // does not share that noise.
+  FeatureFrame out = frame;
+  std::map<std::pair<int64_t, int>, TrackHistory> next;
+  for (FeatureObservation& o : out.observations) {
+    const std::pair<int64_t, int> key(o.feature_id, o.camera);
+    TrackHistory h;
+    const auto it = tracks_.find(key);
+    if (it != tracks_.end()) h = it->second;
+    if (options_.estimate_time_offset) {
+      o.velocity = Eigen::Vector2d::Zero();
+      if (h.count >= 2 && h.t1_ns > h.t0_ns) {
+        o.velocity =
+            (h.xy1 - h.xy0) / (1e-9 * static_cast<double>(h.t1_ns - h.t0_ns));
+      }
+    }
+    h.t0_ns = h.t1_ns;
+    h.xy0 = h.xy1;
+    h.t1_ns = frame.t_ns;
+    h.xy1 = o.xy;
+    h.count = std::min(h.count + 1, 2);
+    next[key] = h;
+  }
+  // Tracks not seen in this frame have ended.
+  tracks_.swap(next);
+  return out;
+}
+
+bool Estimator::TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns) {
+  StaticInitState s;
+  if (!static_init_.TryInitialize(&s)) return false;
+  EstimatorOutput start;
+  start.q_w_b = s.q_w_b;
+  start.b_a = s.b_a;
+  start.b_g = s.b_g;
+  StartWindow(frame, t_imu_ns, start, options_.state_prior.velocity_still);
+  initialized_ = true;
+  static_init_.Clear();
+  return true;
+}
+
+void Estimator::StartWindow(const FeatureFrame& frame, int64_t t_imu_ns,
+                            const EstimatorOutput& state,
+                            double velocity_sigma) {
+  window_.frames.clear();
+  features_.Clear();
+  features_ = FeatureManager(window_.num_cameras);
+  auto f = std::make_unique<WindowFrame>();
+  f->id = next_frame_id_++;
+  f->t_ns = frame.t_ns;
+  f->t_imu_ns = t_imu_ns;
+  f->t_d_at_stamp = window_.t_d;
+  f->keyframe = true;
+  f->p_w_b() = state.p_w_b;
+  f->q_w_b() = state.q_w_b.normalized();
+  f->v_w() = state.v_w;
+  f->b_a() = state.b_a;
+  f->b_g() = state.b_g;
+  summary_.observations_skipped +=
+      features_.AddFrame(f->id, frame.observations).skipped;
+  last_keyframe_id_ = f->id;
+  ++summary_.keyframes;
+  window_.frames.push_back(std::move(f));
+  // With stereo the pair gives depths at once.
+  summary_.landmarks_triangulated +=
+      features_.TriangulateNew(PoseFn(), options_.triangulation);
+  SetPriorOnOldest(velocity_sigma);
+}
+
+void Estimator::SetPriorOnOldest(double velocity_sigma) {
+  WindowFrame& f = *window_.frames.front();
+  prior_ = MakeStatePrior(f.pose.data(), f.speed_bias.data(),
+                          options_.state_prior, velocity_sigma);
+  prior_blocks_ = {f.pose.data(), f.speed_bias.data()};
+}
+
+void Estimator::TrimImu() {
+  // Intervals keep their own samples; the buffer only needs to reach back to
+  // the newest frame (one sample before it for interpolation).
+  const int64_t t_keep = window_.frames.back()->t_imu_ns;
+  size_t first = 0;
+  while (first + 1 < imu_.size() && imu_[first + 1].t_ns <= t_keep) ++first;
+  if (first > 1000) imu_.erase(imu_.begin(), imu_.begin() + first);
+}
+
+void Estimator::DropSecondNewest() {
+  auto& frames = window_.frames;
+  const size_t k = frames.size() - 2;
+  WindowFrame& dropped = *frames[k];
+  WindowFrame& newest = *frames[k + 1];
+  newest.imu = std::make_unique<ImuPreintegration>(
+      ImuPreintegration::Merge(*dropped.imu, *newest.imu));
+  features_.RemoveFrame(dropped.id, PoseFn());
+  frames.erase(frames.begin() + k);
+}
+
+void Estimator::Reset(int64_t t_ns, Failure reason) {
+  ++summary_.resets;
+  summary_.reset_log.push_back({t_ns, reason});
+  prior_.reset();
+  prior_blocks_.clear();
+}
+
+bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
+                            EstimatorOutput* predicted) {
+  const WindowFrame& prev = *window_.frames.back();
+  auto f = std::make_unique<WindowFrame>();
+  try {
+    f->imu = std::make_unique<ImuPreintegration>(
+        prev.t_imu_ns, t_imu_ns, imu_,
+        Eigen::Vector3d(prev.speed_bias.data() + kSbBa),
+        Eigen::Vector3d(prev.speed_bias.data() + kSbBg), noise_,
+        preintegration_);
+  } catch (const std::invalid_argument&) {
+    ++summary_.frames_without_imu;  // a gap or a hole in the IMU stream
+    return false;
+  }
+  f->id = next_frame_id_++;
+  f->t_ns = frame.t_ns;
+  f->t_imu_ns = t_imu_ns;
+  f->t_d_at_stamp = window_.t_d;
+  // Prediction: p_j = p_i + v_i T + g T^2 / 2 + R_i dp,
+  //             v_j = v_i + g T + R_i dv,  q_j = q_i dq.
+  const Eigen::Isometry3d T_w_i = prev.T_w_b();
+  const Eigen::Vector3d v_i(prev.speed_bias.data() + kSbV);
+  const Eigen::Vector3d g_w(0.0, 0.0, -options_.gravity_magnitude);
+  const double T = f->imu->sum_dt();
+  const ImuDelta& d = f->imu->delta();
+  f->p_w_b() =
+      T_w_i.translation() + v_i * T + 0.5 * g_w * T * T + T_w_i.linear() * d.p;
+  f->v_w() = v_i + g_w * T + T_w_i.linear() * d.v;
+  f->q_w_b() =
+      (Eigen::Quaterniond(prev.pose.data() + kPoseQ) * d.q).normalized();
+  for (int k = kSbBa; k < 9; ++k) f->speed_bias[k] = prev.speed_bias[k];
+  *predicted = OutputOf(*f, frame.t_ns);
+
+  const FrameAddStats stats = features_.AddFrame(f->id, frame.observations);
+  summary_.observations_skipped += stats.skipped;
+  if (stats.added == 0) ++summary_.frames_without_observations;
+  const KeyframeDecision decision =
+      DecideKeyframe(features_, last_keyframe_id_, f->id, cameras_[0].focal_px,
+                     options_.keyframe);
+  // A frame without observations adds nothing to keep.
+  f->keyframe = stats.added > 0 && decision.is_keyframe;
+  window_.frames.push_back(std::move(f));
+  return true;
+}
+
+bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
+                             EstimatorOutput* out) {
+  EstimatorOutput predicted;
+  if (!AppendFrame(frame, t_imu_ns, &predicted)) return false;
+  if (window_.frames.size() >= 3 &&
+      !window_.frames[window_.frames.size() - 2]->keyframe) {
+    DropSecondNewest();
+  }
+  summary_.landmarks_triangulated +=
+      features_.TriangulateNew(PoseFn(), options_.triangulation);
+
+  WindowProblem problem(&window_, &features_, ProblemSettings());
+  if (prior_) problem.AddPrior(prior_.get(), prior_blocks_);
+  const bool imu_ok = problem.AddImuFactors();
+  const int landmarks = problem.AddVisualFactors();
+  Solve(&problem);
+
+  Failure failure = CheckStep(predicted, landmarks, frame.t_ns);
+  if (failure == Failure::kNone && !imu_ok) failure = Failure::kNonFinite;
+  if (failure != Failure::kNone) {
+    Reset(frame.t_ns, failure);
+    // Restart from the prediction, or from the last good output when even
+    // the prediction is not finite.
+    const EstimatorOutput restart =
+        Finite(predicted) ? predicted : last_output_;
+    StartWindow(frame, t_imu_ns, restart, options_.state_prior.velocity_moving);
+  } else {
+    Slide(problem);
+  }
+  *out = OutputOf(*window_.frames.back(), frame.t_ns);
+  return true;
+}
+
+void Estimator::Solve(WindowProblem* problem) {
+  summary_.landmarks_per_step.push_back(problem->landmarks_used());
+  const double cpu_start = ThreadCpuSeconds();
+  const ceres::Solver::Summary solve = problem->Solve(options_.solver);
+  summary_.solver_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
+  summary_.solver_time_s.push_back(solve.total_time_in_seconds);
+  summary_.solver_jacobian_time_s += solve.jacobian_evaluation_time_in_seconds;
+  summary_.solver_residual_time_s += solve.residual_evaluation_time_in_seconds;
+  summary_.solver_linear_time_s += solve.linear_solver_time_in_seconds;
+  summary_.solver_preprocess_time_s += solve.preprocessor_time_in_seconds;
+  summary_.solver_iterations += static_cast<int64_t>(solve.iterations.size());
+  if (solve.termination_type == ceres::FAILURE) ++summary_.solver_failures;
+}
+
+Failure Estimator::CheckStep(const EstimatorOutput& predicted, int landmarks,
+                             int64_t t_ns) const {
+  const EstimatorOutput solved = OutputOf(*window_.frames.back(), t_ns);
+  StepCheck check;
+  // Landmarks are only demanded of a full window: a still start has none.
+  const bool full = window_.NumKeyframes() >= options_.window_size;
+  check.landmarks_in_problem =
+      full ? landmarks : options_.failure.min_tracked_landmarks;
+  check.p_before = predicted.p_w_b;
+  check.q_before = predicted.q_w_b;
+  check.p_after = solved.p_w_b;
+  check.q_after = solved.q_w_b;
+  check.v_after = solved.v_w;
+  check.b_a = solved.b_a;
+  check.b_g = solved.b_g;
+  return DetectFailure(check, options_.failure);
+}
+
+void Estimator::Slide(const WindowProblem& problem) {
+  const OutlierReport outliers =
+      problem.Outliers(options_.landmarks.outlier_threshold_px);
+  const WindowFrame& newest = *window_.frames.back();
+  const bool marginalize =
+      newest.keyframe && window_.NumKeyframes() > options_.window_size;
+  if (newest.keyframe) {
+    last_keyframe_id_ = newest.id;
+    ++summary_.keyframes;
+  }
+  // The marginalisation evaluates the problem's factors: before any
+  // landmark they refer to is removed.
+  if (marginalize) MarginalizeOldest(problem, outliers);
+  for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
+  for (const OutlierReport::BadSighting& b : outliers.sightings) {
+    features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
+  }
+  summary_.outlier_landmarks_removed +=
+      static_cast<int64_t>(outliers.landmarks.size());
+  summary_.outlier_sightings_removed +=
+      static_cast<int64_t>(outliers.sightings.size());
+  if (marginalize) {
+    features_.RemoveFrame(window_.frames.front()->id, PoseFn());
+    window_.frames.pop_front();
+    window_.frames.front()->imu.reset();
+  }
+  UpdateImuLinearization();
+}
+
+WindowProblemSettings Estimator::ProblemSettings() const {
+  WindowProblemSettings s;
+  for (int c = 0; c < window_.num_cameras; ++c) {
+    s.focal_px[c] = cameras_[c].focal_px;
+  }
+  s.visual = visual_;
+  s.gravity_magnitude = options_.gravity_magnitude;
+  s.estimate_extrinsics = options_.estimate_extrinsics;
+  s.estimate_time_offset = options_.estimate_time_offset;
+  s.max_landmarks = options_.landmarks.max_landmarks;
+  return s;
+}
+
+void Estimator::MarginalizeOldest(const WindowProblem& problem,
+                                  const OutlierReport& outliers) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = ThreadCpuSeconds();
+  const MarginalizationProblem m = problem.OldestFrameMarginalization(outliers);
+  const MarginalizationResult result = Marginalize(m);
+  ++summary_.marginalizations;
+  if (result.ok()) {
+    prior_ = result.MakePrior();
+    prior_blocks_ = result.kept_parameter_blocks;
+  } else {
+    // No usable prior: a fresh one on the frame that becomes the oldest.
+    ++summary_.marginalization_failures;
+    WindowFrame& next = *window_.frames[1];
+    prior_ = MakeStatePrior(next.pose.data(), next.speed_bias.data(),
+                            options_.state_prior,
+                            options_.state_prior.velocity_moving);
+    prior_blocks_ = {next.pose.data(), next.speed_bias.data()};
+  }
+  summary_.marginalization_time_s.push_back(
+      Seconds(std::chrono::steady_clock::now() - start));
+  summary_.marginalization_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
+}
+
+void Estimator::UpdateImuLinearization() {
+  auto& frames = window_.frames;
+  for (size_t k = 1; k < frames.size(); ++k) {
+    const WindowFrame& i = *frames[k - 1];
+    frames[k]->imu->UpdateBiasEstimate(
+        Eigen::Vector3d(i.speed_bias.data() + kSbBa),
+        Eigen::Vector3d(i.speed_bias.data() + kSbBg));
+  }
+}
+
+}  // namespace vio

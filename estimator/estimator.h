@@ -1,0 +1,188 @@
+#ifndef VIO_ESTIMATOR_ESTIMATOR_H_
+#define VIO_ESTIMATOR_ESTIMATOR_H_
+
+// The sliding-window visual-inertial estimator. It takes IMU samples and, per
+// camera frame, feature observations (undistorted normalised coordinates and
+// image velocity); it never sees an image or a file.
+//
+// Per frame (after a static initialisation):
+//   1. the IMU interval from the newest window frame is preintegrated and the
+//      new frame's state predicted from it;
+//   2. the frame is a keyframe when its median parallax to the last keyframe
+//      (pixels) or its tracked-feature count says so (DecideKeyframe);
+//   3. a non-keyframe second-newest frame is dropped: its IMU interval is
+//      merged into the new one and its observations leave the window;
+//   4. new landmarks are triangulated; one Ceres problem over the window (IMU
+//      factors, visual factors, marginalisation prior) is solved;
+//   5. failure rules are checked (reset on failure, counted and logged);
+//      outlier landmarks are removed;
+//   6. when the newest frame is a keyframe and the window holds more than
+//      window_size keyframes, the oldest is marginalised into the prior.
+// The output never holds NaN: a failed step resets to the prediction.
+//
+// Determinism: with solver.num_threads = 1 the same input gives the same
+// output bit for bit (every container is iterated in a fixed order).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "estimator/estimator_options.h"
+#include "estimator/failure_detection.h"
+#include "estimator/feature_manager.h"
+#include "estimator/static_initializer.h"
+#include "estimator/window.h"
+#include "estimator/window_problem.h"
+#include "factors/marginalization_prior.h"
+#include "factors/visual_factor_options.h"
+#include "geometry/feature_observation.h"
+#include "preintegration/imu_types.h"
+
+namespace vio {
+
+// One camera as the estimator needs it.
+struct EstimatorCamera {
+  Eigen::Isometry3d T_b_c = Eigen::Isometry3d::Identity();  // p_b = T_b_c p_c
+  double focal_px = 460.0;  // for pixel thresholds and residual weights [px]
+};
+
+// The estimate after one frame.
+struct EstimatorOutput {
+  int64_t t_ns = 0;          // the frame's camera stamp [ns]
+  bool processed = false;    // false: the frame was skipped (see summary)
+  bool initialized = false;  // false: the state below is not an estimate
+  bool keyframe = false;
+  Eigen::Vector3d p_w_b = Eigen::Vector3d::Zero();  // [m]
+  Eigen::Quaterniond q_w_b = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d v_w = Eigen::Vector3d::Zero();  // [m/s]
+  Eigen::Vector3d b_a = Eigen::Vector3d::Zero();  // [m/s^2]
+  Eigen::Vector3d b_g = Eigen::Vector3d::Zero();  // [rad/s]
+};
+
+struct ResetEvent {
+  int64_t t_ns = 0;  // camera stamp of the failed step [ns]
+  Failure reason = Failure::kNone;
+};
+
+// Counters over the run; everything skipped or reset is counted here.
+struct EstimatorSummary {
+  int64_t frames = 0;            // AddFrame calls
+  int64_t frames_processed = 0;  // frames that reached the window
+  int64_t keyframes = 0;
+  int64_t resets = 0;
+  std::vector<ResetEvent> reset_log;
+  int64_t imu_samples = 0;                  // accepted
+  int64_t imu_non_finite = 0;               // skipped
+  int64_t imu_out_of_order = 0;             // stamp not after the last: skipped
+  int64_t frames_out_of_order = 0;          // stamp not after the last: skipped
+  int64_t frames_without_imu = 0;           // IMU does not cover it: skipped
+  int64_t frames_before_init = 0;           // before the static start was seen
+  int64_t frames_without_observations = 0;  // processed on the IMU alone
+  int64_t observations_skipped = 0;         // non-finite, unknown camera, ...
+  int64_t landmarks_triangulated = 0;
+  int64_t outlier_landmarks_removed = 0;  // most of their sightings bad
+  int64_t outlier_sightings_removed = 0;  // single sightings, landmark kept
+  int64_t marginalizations = 0;
+  int64_t marginalization_failures = 0;  // prior replaced by a fresh one
+  int64_t solver_failures = 0;           // Ceres reported failure
+  // Per step: Ceres' wall time, and the CPU time of this thread during the
+  // solve (unaffected by other processes competing for the cores) [s].
+  std::vector<double> solver_time_s;
+  std::vector<double> solver_cpu_time_s;
+  // Where the solver time goes, summed over all steps [s], and iterations.
+  double solver_jacobian_time_s = 0.0;    // residual + Jacobian evaluation
+  double solver_residual_time_s = 0.0;    // residual-only evaluation
+  double solver_linear_time_s = 0.0;      // linear solver (Schur, Cholesky)
+  double solver_preprocess_time_s = 0.0;  // problem setup inside Ceres
+  int64_t solver_iterations = 0;
+  std::vector<double> marginalization_time_s;      // wall, each [s]
+  std::vector<double> marginalization_cpu_time_s;  // thread CPU, each [s]
+  std::vector<int> landmarks_per_step;
+};
+
+class Estimator {
+ public:
+  // Throws std::invalid_argument when an options struct does not validate,
+  // when cameras has not 1 or 2 entries, or when options.use_stereo asks for
+  // a second camera that is not there.
+  Estimator(const EstimatorOptions& options, const VisualFactorOptions& visual,
+            const ImuNoise& noise, const PreintegrationOptions& preintegration,
+            const std::vector<EstimatorCamera>& cameras);
+  ~Estimator();
+
+  // Buffers one IMU sample. A non-finite sample or one not after the last is
+  // skipped and counted.
+  void AddImu(const ImuSample& sample);
+
+  // Processes one camera frame. The IMU must already cover its stamp (plus
+  // the time offset); otherwise it is skipped and counted. Never throws on
+  // bad data.
+  EstimatorOutput AddFrame(const FeatureFrame& frame);
+
+  const EstimatorSummary& summary() const { return summary_; }
+  const EstimatorOptions& options() const { return options_; }
+  bool initialized() const { return initialized_; }
+  // The current camera-IMU time offset [s].
+  double time_offset_s() const { return window_.t_d; }
+
+ private:
+  bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
+  void StartWindow(const FeatureFrame& frame, int64_t t_imu_ns,
+                   const EstimatorOutput& state, double velocity_sigma);
+  bool ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
+                    EstimatorOutput* out);
+  bool AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
+                   EstimatorOutput* predicted);
+  void DropSecondNewest();
+  void Solve(WindowProblem* problem);
+  Failure CheckStep(const EstimatorOutput& predicted, int landmarks,
+                    int64_t t_ns) const;
+  void Slide(const WindowProblem& problem);
+  void MarginalizeOldest(const WindowProblem& problem,
+                         const OutlierReport& outliers);
+  void UpdateImuLinearization();
+  WindowProblemSettings ProblemSettings() const;
+  void SetPriorOnOldest(double velocity_sigma);
+  void Reset(int64_t t_ns, Failure reason);
+  void TrimImu();
+  FeatureFrame LaggedVelocities(const FeatureFrame& frame);
+  CameraPoseFn PoseFn() const;
+  EstimatorOutput OutputOf(const WindowFrame& frame, int64_t t_ns) const;
+
+  EstimatorOptions options_;
+  VisualFactorOptions visual_;
+  ImuNoise noise_;
+  PreintegrationOptions preintegration_;
+  std::vector<EstimatorCamera> cameras_;
+
+  StaticInitializer static_init_;
+  FeatureManager features_;
+  Window window_;
+  std::unique_ptr<MarginalizationPrior> prior_;
+  std::vector<double*> prior_blocks_;
+  std::vector<ImuSample> imu_;
+  bool initialized_ = false;
+  int64_t next_frame_id_ = 0;
+  int64_t last_keyframe_id_ = -1;
+  int64_t last_frame_t_ns_ = 0;
+  bool have_frame_ = false;
+  EstimatorOutput last_output_;
+  // Each track's two latest observations (camera stamp [ns], xy), by
+  // (feature id, camera): for the lagged image velocity (LaggedVelocities).
+  struct TrackHistory {
+    int64_t t0_ns = 0, t1_ns = 0;  // t1 the later one
+    Eigen::Vector2d xy0 = Eigen::Vector2d::Zero();
+    Eigen::Vector2d xy1 = Eigen::Vector2d::Zero();
+    int count = 0;
+  };
+  std::map<std::pair<int64_t, int>, TrackHistory> tracks_;
+  EstimatorSummary summary_;
+};
+
+}  // namespace vio
+
+#endif  // VIO_ESTIMATOR_ESTIMATOR_H_

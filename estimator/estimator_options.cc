@@ -1,0 +1,89 @@
+#include "estimator/estimator_options.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace vio {
+namespace {
+
+// Collects the first violated rule; each rule names its field the way the
+// YAML key reads (relative to the `estimator:` block).
+class Checker {
+ public:
+  void Positive(const char* name, double value) {
+    Require(std::isfinite(value) && value > 0.0, name, value, "must be > 0");
+  }
+  void NonNegative(const char* name, double value) {
+    Require(std::isfinite(value) && value >= 0.0, name, value, "must be >= 0");
+  }
+  void AtLeast(const char* name, double value, double low) {
+    std::ostringstream rule;
+    rule << "must be >= " << low;
+    Require(std::isfinite(value) && value >= low, name, value, rule.str());
+  }
+  void Finite(const char* name, double value) {
+    Require(std::isfinite(value), name, value, "must be finite");
+  }
+  void Require(bool ok, const char* name, double value,
+               const std::string& rule) {
+    if (ok || !message_.empty()) return;
+    std::ostringstream out;
+    out << name << " " << rule << " (got " << value << ")";
+    message_ = out.str();
+  }
+  bool Done(std::string* message) const {
+    if (message_.empty()) return true;
+    *message = message_;
+    return false;
+  }
+
+ private:
+  std::string message_;
+};
+
+}  // namespace
+
+bool EstimatorOptions::Validate(std::string* message) const {
+  Checker c;
+  c.AtLeast("window_size", window_size, 2);
+  c.Positive("gravity_magnitude", gravity_magnitude);
+  c.Finite("initial_time_offset_s", initial_time_offset_s);
+  c.NonNegative("keyframe.min_parallax_px", keyframe.min_parallax_px);
+  c.NonNegative("keyframe.min_tracked_features", keyframe.min_tracked_features);
+  c.NonNegative("triangulation.min_parallax_deg",
+                triangulation.min_parallax_deg);
+  c.Positive("triangulation.min_depth_m", triangulation.min_depth_m);
+  c.Require(std::isfinite(triangulation.max_depth_m) &&
+                triangulation.max_depth_m > triangulation.min_depth_m,
+            "triangulation.max_depth_m", triangulation.max_depth_m,
+            "must be > triangulation.min_depth_m");
+  c.AtLeast("triangulation.min_observations", triangulation.min_observations,
+            2);
+  c.Positive("landmarks.outlier_threshold_px", landmarks.outlier_threshold_px);
+  c.AtLeast("landmarks.max_landmarks", landmarks.max_landmarks, 1);
+  c.Positive("static_init.window_s", static_init.window_s);
+  c.Require(std::isfinite(static_init.block_s) && static_init.block_s > 0.0 &&
+                static_init.block_s <= 0.5 * static_init.window_s,
+            "static_init.block_s", static_init.block_s,
+            "must be in (0, static_init.window_s / 2]");
+  c.Positive("static_init.max_acc_std", static_init.max_acc_std);
+  c.Positive("static_init.max_gyr_std", static_init.max_gyr_std);
+  c.Positive("state_prior.position_m", state_prior.position_m);
+  c.Positive("state_prior.yaw_rad", state_prior.yaw_rad);
+  c.Positive("state_prior.tilt_rad", state_prior.tilt_rad);
+  c.Positive("state_prior.velocity_still", state_prior.velocity_still);
+  c.Positive("state_prior.velocity_moving", state_prior.velocity_moving);
+  c.Positive("state_prior.accel_bias", state_prior.accel_bias);
+  c.Positive("state_prior.gyro_bias", state_prior.gyro_bias);
+  c.NonNegative("failure.min_tracked_landmarks", failure.min_tracked_landmarks);
+  c.Positive("failure.max_accel_bias", failure.max_accel_bias);
+  c.Positive("failure.max_gyro_bias", failure.max_gyro_bias);
+  c.Positive("failure.max_position_jump_m", failure.max_position_jump_m);
+  c.Positive("failure.max_rotation_jump_deg", failure.max_rotation_jump_deg);
+  c.AtLeast("solver.max_iterations", solver.max_iterations, 1);
+  c.Positive("solver.max_time_s", solver.max_time_s);
+  c.AtLeast("solver.num_threads", solver.num_threads, 1);
+  return c.Done(message);
+}
+
+}  // namespace vio

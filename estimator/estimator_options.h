@@ -1,0 +1,121 @@
+#ifndef VIO_ESTIMATOR_ESTIMATOR_OPTIONS_H_
+#define VIO_ESTIMATOR_ESTIMATOR_OPTIONS_H_
+
+// The options of the sliding-window estimator: plain structs with in-class
+// defaults, a unit on every field and a Validate() that can be tested without
+// YAML (config/estimator_config maps the `estimator:` block onto them).
+//
+// Pixel thresholds are converted to the normalised image plane by the focal
+// length [px] the estimator is given with the cameras: x [-] = px / focal.
+
+#include <ceres/types.h>
+
+#include <string>
+
+namespace vio {
+
+// When a new frame becomes a keyframe (the newest frame against the last
+// keyframe, over the features seen in both).
+struct KeyframeOptions {
+  double min_parallax_px = 20.0;  // median parallax making a keyframe [px]
+  int min_tracked_features = 50;  // fewer tracked features: keyframe [-]
+};
+
+// When a landmark may enter the problem.
+struct TriangulationOptions {
+  // Largest angle between two of its viewing rays, at least [deg]. A stereo
+  // pair with a 0.11 m baseline sees 1 deg at about 6 m.
+  double min_parallax_deg = 0.5;
+  double min_depth_m = 0.1;   // in every observing camera, at least [m]
+  double max_depth_m = 40.0;  // in the anchor camera, at most [m]
+  int min_observations = 2;   // sightings (frames x cameras) needed [-]
+};
+
+// Which landmarks enter the problem and which leave it after the solve. (The
+// pixel noise and the robust kernel are the visual factors' own options,
+// factors/visual_factor_options.h.)
+struct LandmarkOptions {
+  // After the solve, a sighting whose reprojection error exceeds this is
+  // removed; a landmark with most of its sightings beyond it is removed
+  // whole [px]. With 1 px feature noise a good sighting passes 5 px almost
+  // surely; a tracker slip lands far beyond it.
+  double outlier_threshold_px = 5.0;
+  // Landmarks per step at most, those with the most sightings first [-].
+  int max_landmarks = 120;
+};
+
+// Static start: the IMU tells when the vehicle stands still.
+struct StaticInitOptions {
+  double window_s = 1.0;  // IMU span averaged [s]
+  // Stillness: per-axis standard deviation of the means of blocks of block_s
+  // over the span, at most [m/s^2] / [rad/s]. Block means ignore rotor
+  // vibration: EuRoC V1_01 standing gives <= 0.10 m/s^2 and 0.006 rad/s,
+  // flying 0.1-1.1 m/s^2 and 0.07-0.13 rad/s (0.1 s blocks over 1 s).
+  double block_s = 0.1;
+  double max_acc_std = 0.15;
+  double max_gyr_std = 0.02;
+  // The part of the mean specific force along gravity beyond g becomes the
+  // accelerometer bias; otherwise the bias starts at zero.
+  bool estimate_accel_bias = false;
+};
+
+// The prior that fixes the gauge (position, yaw) and the first speed-bias
+// estimate of a window that starts afresh: after the static initialisation,
+// after a reset, or when a marginalisation fails. Standard deviations.
+struct StatePriorOptions {
+  double position_m = 1e-3;      // [m]
+  double yaw_rad = 1e-3;         // about world z [rad]
+  double tilt_rad = 0.02;        // roll and pitch [rad]
+  double velocity_still = 0.02;  // after the static start [m/s]
+  double velocity_moving = 0.3;  // after a reset or failure [m/s]
+  double accel_bias = 0.2;       // [m/s^2]
+  double gyro_bias = 0.005;      // [rad/s]
+};
+
+// When the estimator gives up and starts again.
+struct FailureOptions {
+  int min_tracked_landmarks = 8;        // landmarks in the problem [-]
+  double max_accel_bias = 2.0;          // |b_a| [m/s^2]
+  double max_gyro_bias = 0.5;           // |b_g| [rad/s]
+  double max_position_jump_m = 1.0;     // newest position, step to step [m]
+  double max_rotation_jump_deg = 30.0;  // newest attitude, step to step [deg]
+};
+
+// Ceres options of the per-step solve.
+struct SolverOptions {
+  ceres::LinearSolverType linear_solver = ceres::DENSE_SCHUR;
+  ceres::TrustRegionStrategyType trust_region = ceres::DOGLEG;
+  int max_iterations = 4;    // [-]
+  double max_time_s = 0.04;  // per step [s]
+  // 1 makes every run bit-for-bit repeatable (Ceres sums Jacobian blocks in a
+  // thread-dependent order with more threads).
+  int num_threads = 1;
+};
+
+struct EstimatorOptions {
+  int window_size = 10;             // keyframes in the window [-]
+  double gravity_magnitude = 9.81;  // [m/s^2]
+  bool estimate_extrinsics = false;
+  // Camera-IMU time offset t_d, t_imu = t_cam + t_d [s]: frame poses sit at
+  // t_cam + t_d. Estimated online (camera-0 factors) when asked: experimental,
+  // not yet reliable with noisy features (README, Figures).
+  bool estimate_time_offset = false;
+  double initial_time_offset_s = 0.0;
+  // Stereo: use camera 1 too (the sequence must have it).
+  bool use_stereo = false;
+  KeyframeOptions keyframe;
+  TriangulationOptions triangulation;
+  LandmarkOptions landmarks;
+  StaticInitOptions static_init;
+  StatePriorOptions state_prior;
+  FailureOptions failure;
+  SolverOptions solver;
+
+  // True when every field is in range; otherwise false with a message that
+  // starts with the offending field's name ("window_size must be >= 2 ...").
+  bool Validate(std::string* message) const;
+};
+
+}  // namespace vio
+
+#endif  // VIO_ESTIMATOR_ESTIMATOR_OPTIONS_H_

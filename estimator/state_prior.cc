@@ -1,0 +1,35 @@
+#include "estimator/state_prior.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <vector>
+
+namespace vio {
+
+std::unique_ptr<MarginalizationPrior> MakeStatePrior(
+    const double* pose, const double* speed_bias,
+    const StatePriorOptions& sigmas, double velocity_sigma) {
+  // Tangent order: [dp (3), dtheta (3)] of the pose, then v, b_a, b_g.
+  Eigen::Matrix<double, 15, 15> J = Eigen::Matrix<double, 15, 15>::Zero();
+  J.block<3, 3>(0, 0) = Eigen::Matrix3d::Identity() / sigmas.position_m;
+  const Eigen::Quaterniond q_w_b(pose + 3);
+  const Eigen::Vector3d u =
+      q_w_b.normalized().conjugate() * Eigen::Vector3d::UnitZ();
+  const Eigen::Matrix3d uu = u * u.transpose();
+  const Eigen::Matrix3d info_rot =
+      (Eigen::Matrix3d::Identity() - uu) / (sigmas.tilt_rad * sigmas.tilt_rad) +
+      uu / (sigmas.yaw_rad * sigmas.yaw_rad);
+  J.block<3, 3>(3, 3) = info_rot.llt().matrixU();
+  J.block<3, 3>(6, 6) = Eigen::Matrix3d::Identity() / velocity_sigma;
+  J.block<3, 3>(9, 9) = Eigen::Matrix3d::Identity() / sigmas.accel_bias;
+  J.block<3, 3>(12, 12) = Eigen::Matrix3d::Identity() / sigmas.gyro_bias;
+  std::vector<PriorBlock> blocks(2);
+  blocks[0].kind = PriorBlockKind::kPose;
+  blocks[0].x0.assign(pose, pose + 7);
+  blocks[1].kind = PriorBlockKind::kEuclidean;
+  blocks[1].x0.assign(speed_bias, speed_bias + 9);
+  return std::make_unique<MarginalizationPrior>(blocks, Eigen::MatrixXd(J),
+                                                Eigen::VectorXd::Zero(15));
+}
+
+}  // namespace vio

@@ -1,0 +1,29 @@
+#ifndef VIO_ESTIMATOR_STATE_PRIOR_H_
+#define VIO_ESTIMATOR_STATE_PRIOR_H_
+
+// A Gaussian prior on one frame's pose and speed-bias, in the form of the
+// marginalisation prior (r = r0 + J (x (-) x0), here r0 = 0), so that the
+// window treats it like any prior and folds it into the next one.
+//
+// Rotation: the tangent is the right (body-frame) perturbation dtheta, but the
+// uncertainty is stated about world axes: yaw about world z, tilt about the
+// horizontal. With u = R_w_b^T e_z (world z seen in the body),
+//   Lambda_rot = (I - u u^T) / sigma_tilt^2 + u u^T / sigma_yaw^2,
+// and J_rot = L^T with Lambda_rot = L L^T, so that J^T J = Lambda.
+
+#include <memory>
+
+#include "estimator/estimator_options.h"
+#include "factors/marginalization_prior.h"
+
+namespace vio {
+
+// pose: 7 values [t, q (x, y, z, w)], speed_bias: 9 [v, b_a, b_g], both
+// finite; they become x0. The prior's blocks are (pose, speed_bias).
+std::unique_ptr<MarginalizationPrior> MakeStatePrior(
+    const double* pose, const double* speed_bias,
+    const StatePriorOptions& sigmas, double velocity_sigma);
+
+}  // namespace vio
+
+#endif  // VIO_ESTIMATOR_STATE_PRIOR_H_

@@ -1,0 +1,261 @@
+#include "estimator/window_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+#include "factors/imu_factor.h"
+#include "factors/reprojection_factor.h"
+#include "factors/robust_kernel.h"
+#include "factors/stereo_reprojection_factor.h"
+#include "factors/timed_reprojection_factor.h"
+
+namespace vio {
+namespace {
+
+ceres::Problem::Options ProblemOptions() {
+  ceres::Problem::Options o;
+  o.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  o.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  o.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  // Blocks are never removed within a step; skip Ceres' reverse index.
+  o.enable_fast_removal = false;
+  return o;
+}
+
+}  // namespace
+
+WindowProblem::WindowProblem(Window* window, FeatureManager* features,
+                             const WindowProblemSettings& settings)
+    : window_(window),
+      features_(features),
+      settings_(settings),
+      loss_(MakeLossFunction(settings.visual.robust_kernel)),
+      problem_(ProblemOptions()) {
+  for (auto& f : window_->frames) {
+    AddBlock(f->pose.data(), 7, /*pose=*/true, /*constant=*/false);
+    AddBlock(f->speed_bias.data(), 9, /*pose=*/false, /*constant=*/false);
+  }
+  for (int c = 0; c < window_->num_cameras; ++c) {
+    AddBlock(window_->extrinsics[c].data(), 7, /*pose=*/true,
+             !settings_.estimate_extrinsics);
+  }
+  if (settings_.estimate_time_offset) {
+    AddBlock(&window_->t_d, 1, /*pose=*/false, /*constant=*/false);
+    // Unobservable while the camera barely moves: keep it to a plausible
+    // range instead of letting it wander.
+    problem_.SetParameterLowerBound(&window_->t_d, 0,
+                                    -settings_.max_time_offset_s);
+    problem_.SetParameterUpperBound(&window_->t_d, 0,
+                                    settings_.max_time_offset_s);
+  }
+}
+
+void WindowProblem::AddBlock(double* values, int size, bool pose,
+                             bool constant) {
+  const ceres::Manifold* manifold = pose ? &pose_manifold_ : nullptr;
+  problem_.AddParameterBlock(values, size,
+                             const_cast<ceres::Manifold*>(manifold));
+  if (constant) problem_.SetParameterBlockConstant(values);
+  blocks_[values] = {size, manifold, constant};
+  block_order_.push_back(values);
+}
+
+void WindowProblem::AddResidual(Residual residual) {
+  problem_.AddResidualBlock(const_cast<ceres::CostFunction*>(residual.cost),
+                            const_cast<ceres::LossFunction*>(residual.loss),
+                            residual.blocks);
+  residuals_.push_back(std::move(residual));
+}
+
+void WindowProblem::AddPrior(const MarginalizationPrior* prior,
+                             const std::vector<double*>& blocks) {
+  Residual r;
+  r.cost = prior;
+  r.blocks = blocks;
+  AddResidual(std::move(r));
+}
+
+bool WindowProblem::AddImuFactors() {
+  std::vector<Residual> imu;
+  auto& frames = window_->frames;
+  for (size_t k = 1; k < frames.size(); ++k) {
+    WindowFrame& i = *frames[k - 1];
+    WindowFrame& j = *frames[k];
+    Residual r;
+    try {
+      r.owned = std::make_unique<ImuFactor>(j.imu->result(),
+                                            settings_.gravity_magnitude);
+    } catch (const std::invalid_argument&) {
+      return false;
+    }
+    r.cost = r.owned.get();
+    r.blocks = {i.pose.data(), i.speed_bias.data(), j.pose.data(),
+                j.speed_bias.data()};
+    r.imu_start_frame = i.id;
+    imu.push_back(std::move(r));
+  }
+  for (Residual& r : imu) AddResidual(std::move(r));
+  return true;
+}
+
+int WindowProblem::AddVisualFactors() {
+  // Candidates: triangulated, anchored in the window, seen again later.
+  std::vector<Landmark*> candidates;
+  for (auto& [id, l] : features_->landmarks()) {
+    if (!l.triangulated || !l.HasAnchor()) continue;
+    if (l.AnchorIndex() + 1 >= static_cast<int>(l.sightings.size())) continue;
+    candidates.push_back(&l);
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Landmark* a, const Landmark* b) {
+                     return a->sightings.size() > b->sightings.size();
+                   });
+  if (static_cast<int>(candidates.size()) > settings_.max_landmarks) {
+    candidates.resize(settings_.max_landmarks);
+  }
+  for (Landmark* l : candidates) AddLandmark(l);
+  landmarks_used_ = static_cast<int>(candidates.size());
+  return landmarks_used_;
+}
+
+void WindowProblem::AddLandmark(Landmark* l) {
+  const int anchor = l->AnchorIndex();
+  const Sighting& a = l->sightings[anchor];
+  double* rho = &l->inverse_depth;
+  AddBlock(rho, 1, /*pose=*/false, /*constant=*/false);
+  WindowFrame* frame_i = window_->Find(a.frame_id);
+  double* ext0 = window_->extrinsics[0].data();
+  double* ext1 = window_->extrinsics[1].data();
+  for (size_t k = anchor + 1; k < l->sightings.size(); ++k) {
+    const Sighting& s = l->sightings[k];
+    const double sqrt_info =
+        settings_.visual.SqrtInformation(settings_.focal_px[s.camera]);
+    Residual r;
+    r.loss = loss_.get();
+    r.feature_id = l->feature_id;
+    r.rho = rho;
+    r.target_frame = s.frame_id;
+    r.target_camera = s.camera;
+    r.anchor_frame = a.frame_id;
+    if (s.frame_id == a.frame_id) {
+      r.owned =
+          std::make_unique<StereoReprojectionFactor>(a.xy, s.xy, sqrt_info);
+      r.blocks = {ext0, ext1, rho};
+    } else {
+      double* pose_j = window_->Find(s.frame_id)->pose.data();
+      if (s.camera == 0 && settings_.estimate_time_offset) {
+        const double t_d_j = window_->Find(s.frame_id)->t_d_at_stamp;
+        r.owned = std::make_unique<TimedReprojectionFactor>(
+            TimedObservation{a.xy, a.velocity, frame_i->t_d_at_stamp},
+            TimedObservation{s.xy, s.velocity, t_d_j}, sqrt_info);
+        r.blocks = {frame_i->pose.data(), pose_j, ext0, rho, &window_->t_d};
+      } else if (s.camera == 0) {
+        r.owned = std::make_unique<ReprojectionFactor>(a.xy, s.xy, sqrt_info);
+        r.blocks = {frame_i->pose.data(), pose_j, ext0, rho};
+      } else {
+        r.owned = std::make_unique<StereoTwoFrameReprojectionFactor>(a.xy, s.xy,
+                                                                     sqrt_info);
+        r.blocks = {frame_i->pose.data(), pose_j, ext0, ext1, rho};
+      }
+    }
+    r.cost = r.owned.get();
+    AddResidual(std::move(r));
+    ++num_visual_;
+  }
+}
+
+ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {
+  ceres::Solver::Options o;
+  o.linear_solver_type = options.linear_solver;
+  o.trust_region_strategy_type = options.trust_region;
+  o.max_num_iterations = options.max_iterations;
+  o.max_solver_time_in_seconds = options.max_time_s;
+  o.num_threads = options.num_threads;
+  o.minimizer_progress_to_stdout = false;
+  o.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(o, &problem_, &summary);
+  return summary;
+}
+
+bool OutlierReport::Involves(int64_t feature_id) const {
+  for (int64_t id : landmarks) {
+    if (id == feature_id) return true;
+  }
+  for (const BadSighting& s : sightings) {
+    if (s.feature_id == feature_id) return true;
+  }
+  return false;
+}
+
+OutlierReport WindowProblem::Outliers(double threshold_px) const {
+  OutlierReport report;
+  // A whitened residual r = (focal / sigma) e has |e| focal = |r| sigma px.
+  // Each sighting is tested on its own, so that one bad observation (a
+  // tracker slip) costs that observation, not the whole landmark.
+  const double max_norm = threshold_px / settings_.visual.sigma_px;
+  std::vector<OutlierReport::BadSighting> bad;
+  int total = 0;
+  bool failed = false;
+  for (size_t k = 0; k < residuals_.size(); ++k) {
+    const Residual& r = residuals_[k];
+    if (r.feature_id < 0) continue;
+    Eigen::Vector2d e;
+    const bool ok = r.cost->Evaluate(r.blocks.data(), e.data(), nullptr);
+    failed = failed || !ok || !e.allFinite();
+    if (!failed && e.norm() > max_norm) {
+      bad.push_back({r.feature_id, r.target_frame, r.target_camera});
+    }
+    ++total;
+    // A landmark's residuals are consecutive.
+    const bool last = k + 1 == residuals_.size() ||
+                      residuals_[k + 1].feature_id != r.feature_id;
+    if (!last) continue;
+    if (failed || 2 * static_cast<int>(bad.size()) > total) {
+      report.landmarks.push_back(r.feature_id);
+    } else {
+      report.sightings.insert(report.sightings.end(), bad.begin(), bad.end());
+    }
+    bad.clear();
+    total = 0;
+    failed = false;
+  }
+  return report;
+}
+
+MarginalizationProblem WindowProblem::OldestFrameMarginalization(
+    const OutlierReport& excluded) const {
+  MarginalizationProblem m;
+  const WindowFrame& oldest = *window_->frames.front();
+  std::set<const double*> touched;
+  for (const Residual& r : residuals_) {
+    const bool prior = r.feature_id < 0 && r.imu_start_frame < 0;
+    const bool use = prior || r.imu_start_frame == oldest.id ||
+                     (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
+                      !excluded.Involves(r.feature_id));
+    if (!use) continue;
+    m.residual_blocks.push_back({r.cost, r.loss, r.blocks});
+    touched.insert(r.blocks.begin(), r.blocks.end());
+  }
+  // In the order the blocks entered the problem, never by address: the
+  // prior's layout, and so every sum over it, must not vary between runs.
+  for (double* values : block_order_) {
+    if (touched.count(values) == 0) continue;
+    const BlockInfo& info = blocks_.at(values);
+    m.parameter_blocks.push_back(
+        {values, info.size, info.manifold, info.constant});
+  }
+  m.marginalized.push_back(oldest.pose.data());
+  m.marginalized.push_back(oldest.speed_bias.data());
+  for (const Residual& r : residuals_) {
+    if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
+        !excluded.Involves(r.feature_id) && m.marginalized.back() != r.rho) {
+      m.marginalized.push_back(r.rho);
+    }
+  }
+  return m;
+}
+
+}  // namespace vio

@@ -1,0 +1,141 @@
+#ifndef VIO_ESTIMATOR_WINDOW_PROBLEM_H_
+#define VIO_ESTIMATOR_WINDOW_PROBLEM_H_
+
+// One step's Ceres problem over the window: the IMU factors between
+// consecutive frames, the visual factors of the triangulated landmarks (with
+// the configured robust kernel) and the marginalisation prior. The problem
+// does not own its cost functions: they stay alive here after the solve so
+// that the outlier test and the marginalisation can evaluate them at the
+// solution.
+//
+// Visual factors per landmark, from its anchor a (first camera-0 sighting,
+// frame i) to each later sighting s (frame j, camera c):
+//   j == i, c == 1: StereoReprojectionFactor
+//                   blocks T_b_c0, T_b_c1, rho
+//   j != i, c == 0: ReprojectionFactor
+//                   blocks pose_i, pose_j, T_b_c0, rho
+//                   (TimedReprojectionFactor, with t_d after rho, when the
+//                   time offset is estimated)
+//   j != i, c == 1: StereoTwoFrameReprojectionFactor
+//                   blocks pose_i, pose_j, T_b_c0, T_b_c1, rho
+// Sightings older than the anchor (camera 1 only) are not used, so only the
+// landmarks anchored in a frame have residuals touching that frame: the
+// marginalisation of the oldest frame then removes exactly those landmarks,
+// and the prior holds no landmark.
+
+#include <ceres/ceres.h>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <set>
+#include <vector>
+
+#include "estimator/estimator_options.h"
+#include "estimator/feature_manager.h"
+#include "estimator/marginalization.h"
+#include "estimator/window.h"
+#include "factors/marginalization_prior.h"
+#include "factors/pose_manifold.h"
+#include "factors/visual_factor_options.h"
+
+namespace vio {
+
+struct WindowProblemSettings {
+  std::array<double, kMaxCameras> focal_px{460.0, 460.0};  // [px]
+  VisualFactorOptions visual;
+  double gravity_magnitude = 9.81;  // [m/s^2]
+  bool estimate_extrinsics = false;
+  // Camera-0 factors between frames become TimedReprojectionFactors on the
+  // window's t_d block; camera-1 factors stay untimed.
+  bool estimate_time_offset = false;
+  double max_time_offset_s = 0.02;  // |t_d| bound while estimated [s]
+  int max_landmarks = 120;
+};
+
+// What the outlier test found.
+struct OutlierReport {
+  struct BadSighting {
+    int64_t feature_id = -1;
+    int64_t frame_id = -1;
+    int camera = 0;
+  };
+  std::vector<int64_t> landmarks;      // to remove whole, by feature id
+  std::vector<BadSighting> sightings;  // to remove, their landmark kept
+  bool Involves(int64_t feature_id) const;
+};
+
+class WindowProblem {
+ public:
+  // window and features must outlive this object and must not change shape
+  // (frames, landmarks) while it lives; their values are what it solves.
+  WindowProblem(Window* window, FeatureManager* features,
+                const WindowProblemSettings& settings);
+
+  // The prior (not owned) on its blocks, which must be window blocks.
+  void AddPrior(const MarginalizationPrior* prior,
+                const std::vector<double*>& blocks);
+  // IMU factors between consecutive window frames. Returns false (and adds
+  // none) when one cannot be built (a covariance not positive definite).
+  bool AddImuFactors();
+  // Visual factors of up to max_landmarks landmarks, those with the most
+  // sightings first (ties by feature id). Returns the landmarks used.
+  int AddVisualFactors();
+
+  // Solves with the options (threads as given).
+  ceres::Solver::Summary Solve(const SolverOptions& options);
+
+  // Sightings whose reprojection error at the current values exceeds
+  // threshold_px [px]. A landmark where most of its residuals are bad (its
+  // anchor is the likely culprit) or one fails to evaluate is listed whole.
+  OutlierReport Outliers(double threshold_px) const;
+
+  // The marginalisation of the oldest window frame: its IMU factor, the prior
+  // and every visual factor of the landmarks anchored in it; marginalised are
+  // its pose and speed-bias blocks and those landmarks' inverse depths.
+  // Landmarks with outliers (about to be removed) are left out.
+  MarginalizationProblem OldestFrameMarginalization(
+      const OutlierReport& excluded) const;
+
+  int num_visual_residuals() const { return num_visual_; }
+  int landmarks_used() const { return landmarks_used_; }
+
+ private:
+  struct Residual {
+    const ceres::CostFunction* cost = nullptr;
+    std::unique_ptr<ceres::CostFunction> owned;
+    const ceres::LossFunction* loss = nullptr;
+    std::vector<double*> blocks;
+    int64_t feature_id = -1;    // visual residuals only
+    double* rho = nullptr;      // visual residuals: the inverse depth
+    int64_t target_frame = -1;  // visual residuals: the sighting's frame
+    int target_camera = 0;
+    int64_t anchor_frame = -1;
+    int64_t imu_start_frame = -1;  // IMU residuals only
+  };
+  struct BlockInfo {
+    int size = 0;
+    const ceres::Manifold* manifold = nullptr;
+    bool constant = false;
+  };
+
+  void AddBlock(double* values, int size, bool pose, bool constant);
+  void AddResidual(Residual residual);
+  void AddLandmark(Landmark* landmark);
+
+  Window* window_;
+  FeatureManager* features_;
+  WindowProblemSettings settings_;
+  PoseManifold pose_manifold_;
+  std::unique_ptr<ceres::LossFunction> loss_;
+  ceres::Problem problem_;
+  std::vector<Residual> residuals_;
+  std::map<const double*, BlockInfo> blocks_;  // lookup only
+  std::vector<double*> block_order_;           // as added
+  int num_visual_ = 0;
+  int landmarks_used_ = 0;
+};
+
+}  // namespace vio
+
+#endif  // VIO_ESTIMATOR_WINDOW_PROBLEM_H_

@@ -1,0 +1,57 @@
+#include "estimator/estimator_options.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+namespace vio {
+namespace {
+
+TEST(EstimatorOptions, DefaultsAreValidAndMatchTheDesign) {
+  const EstimatorOptions o;
+  std::string message;
+  EXPECT_TRUE(o.Validate(&message)) << message;
+  EXPECT_EQ(o.window_size, 10);
+  EXPECT_EQ(o.solver.num_threads, 1);
+  EXPECT_DOUBLE_EQ(o.gravity_magnitude, 9.81);
+}
+
+TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
+  struct Case {
+    void (*spoil)(EstimatorOptions*);
+    const char* expected;
+  } cases[] = {
+      {[](EstimatorOptions* o) { o->window_size = 1; },
+       "window_size must be >= 2 (got 1)"},
+      {[](EstimatorOptions* o) { o->gravity_magnitude = -9.81; },
+       "gravity_magnitude must be > 0"},
+      {[](EstimatorOptions* o) {
+         o->triangulation.max_depth_m = o->triangulation.min_depth_m;
+       },
+       "triangulation.max_depth_m must be > triangulation.min_depth_m"},
+      {[](EstimatorOptions* o) {
+         o->landmarks.outlier_threshold_px =
+             std::numeric_limits<double>::quiet_NaN();
+       },
+       "landmarks.outlier_threshold_px must be > 0"},
+      {[](EstimatorOptions* o) { o->solver.num_threads = 0; },
+       "solver.num_threads must be >= 1"},
+      {[](EstimatorOptions* o) { o->failure.max_gyro_bias = 0.0; },
+       "failure.max_gyro_bias must be > 0"},
+      {[](EstimatorOptions* o) { o->static_init.window_s = -1.0; },
+       "static_init.window_s must be > 0"},
+  };
+  for (const Case& c : cases) {
+    EstimatorOptions o;
+    c.spoil(&o);
+    std::string message;
+    EXPECT_FALSE(o.Validate(&message)) << c.expected;
+    EXPECT_EQ(message.rfind(c.expected, 0), 0u)
+        << "got '" << message << "', expected it to start with '" << c.expected
+        << "'";
+  }
+}
+
+}  // namespace
+}  // namespace vio

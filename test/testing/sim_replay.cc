@@ -1,0 +1,89 @@
+#include "test/testing/sim_replay.h"
+
+#include "dataset/trajectory.h"
+#include "estimator/sequence_runner.h"
+#include "eval/alignment.h"
+#include "eval/association.h"
+#include "eval/metrics.h"
+#include "frontend/observation_builder.h"
+#include "geometry/camera_model.h"
+
+namespace vio {
+namespace testing {
+
+SimulatorOptions ShortSimulation(double seconds, bool stereo) {
+  SimulatorOptions o;
+  o.duration_s = seconds;
+  o.camera.stereo = stereo;
+  return o;
+}
+
+EstimatorOptions OptionsFor(const SimulatorOptions& simulation) {
+  EstimatorOptions o;
+  o.use_stereo = simulation.camera.stereo;
+  o.gravity_magnitude = simulation.gravity_m_s2;
+  return o;
+}
+
+PreparedSimulation Prepare(const Simulation& simulation) {
+  const SimCameraOptions& cam = simulation.options.camera;
+  std::vector<CameraModel> models = {CameraModel(cam.cam0)};
+  if (cam.stereo) models.push_back(CameraModel(cam.cam1));
+  PreparedSimulation p;
+  for (const CameraModel& m : models) {
+    EstimatorCamera c;
+    c.T_b_c.linear() = m.calibration().q_b_c.toRotationMatrix();
+    c.T_b_c.translation() = m.calibration().t_b_c;
+    c.focal_px = m.focal();
+    p.cameras.push_back(c);
+  }
+  ObservationBuilder builder(models);
+  p.frames = simulation.frames;
+  for (FeatureFrame& f : p.frames) builder.Process(&f);
+  return p;
+}
+
+SimReplay ReplaySimulation(const Simulation& simulation,
+                           const EstimatorOptions& options) {
+  return Replay(simulation, options, simulation.imu,
+                Prepare(simulation).frames);
+}
+
+SimReplay Replay(const Simulation& simulation, const EstimatorOptions& options,
+                 const std::vector<ImuSample>& imu,
+                 const std::vector<FeatureFrame>& frames) {
+  Estimator estimator(options, VisualFactorOptions(),
+                      simulation.options.imu.noise, PreintegrationOptions(),
+                      Prepare(simulation).cameras);
+  SimReplay r;
+  r.outputs = RunSequence(&estimator, imu, frames);
+  r.summary = estimator.summary();
+
+  Trajectory estimate, truth;
+  for (const EstimatorOutput& o : r.outputs) {
+    if (o.processed && o.initialized)
+      estimate.push_back({o.t_ns, o.p_w_b, o.q_w_b});
+  }
+  for (const StampedState& s : simulation.ground_truth)
+    truth.push_back(PoseOf(s));
+  if (estimate.size() < 3) return r;
+  const Association a = Associate(estimate, truth);
+  const Alignment align =
+      Align(a.estimate, a.ground_truth, AlignmentMode::kPosYaw);
+  const Trajectory aligned = align.Apply(a.estimate);
+  r.ate_rmse_m = ComputeAte(aligned, a.ground_truth).translation.rmse;
+  r.rpe_rmse_m = ComputeRpe(aligned, a.ground_truth, 1.0, RpeUnit::kMeters)
+                     .translation.rmse;
+  // Biases at the last estimate against the truth at that stamp.
+  const EstimatorOutput& last = r.outputs.back();
+  const StampedState* gt = &simulation.ground_truth.front();
+  for (const StampedState& s : simulation.ground_truth) {
+    if (s.t_ns <= last.t_ns) gt = &s;
+  }
+  r.final_b_a_error = (last.b_a - gt->b_a).norm();
+  r.final_b_g_error = (last.b_g - gt->b_g).norm();
+  return r;
+}
+
+}  // namespace testing
+}  // namespace vio

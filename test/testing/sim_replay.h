@@ -1,0 +1,51 @@
+#ifndef VIO_TEST_TESTING_SIM_REPLAY_H_
+#define VIO_TEST_TESTING_SIM_REPLAY_H_
+
+// Runs the estimator on an in-memory simulation, as vio_replay does on a
+// simulated folder (observation builder, then the sequence runner), and
+// evaluates it against the simulator's truth (posyaw alignment).
+
+#include <vector>
+
+#include "dataset/simulator.h"
+#include "estimator/estimator.h"
+
+namespace vio {
+namespace testing {
+
+struct SimReplay {
+  std::vector<EstimatorOutput> outputs;
+  EstimatorSummary summary;
+  double ate_rmse_m = -1.0;      // after posyaw alignment [m]
+  double rpe_rmse_m = -1.0;      // over 1 m of travel [m]
+  double final_b_a_error = 0.0;  // |b_a - truth| at the last frame [m/s^2]
+  double final_b_g_error = 0.0;  // [rad/s]
+};
+
+// A short simulation with a still start: `seconds` long, mono or stereo.
+SimulatorOptions ShortSimulation(double seconds, bool stereo);
+
+// The estimator options for a simulation (use_stereo as the simulation).
+EstimatorOptions OptionsFor(const SimulatorOptions& simulation);
+
+// The simulation's cameras and frames as the estimator takes them (xy and
+// velocity from the observation builder).
+struct PreparedSimulation {
+  std::vector<EstimatorCamera> cameras;
+  std::vector<FeatureFrame> frames;
+};
+PreparedSimulation Prepare(const Simulation& simulation);
+
+// Runs the estimator over imu and frames and evaluates against the truth.
+SimReplay Replay(const Simulation& simulation, const EstimatorOptions& options,
+                 const std::vector<ImuSample>& imu,
+                 const std::vector<FeatureFrame>& frames);
+
+// Replay of the simulation as it is.
+SimReplay ReplaySimulation(const Simulation& simulation,
+                           const EstimatorOptions& options);
+
+}  // namespace testing
+}  // namespace vio
+
+#endif  // VIO_TEST_TESTING_SIM_REPLAY_H_

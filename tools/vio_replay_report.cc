@@ -1,0 +1,176 @@
+#include "tools/vio_replay_report.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "dataset/trajectory_io.h"
+#include "eval/alignment.h"
+#include "eval/association.h"
+#include "eval/metrics.h"
+#include "eval/plot.h"
+
+namespace vio {
+namespace {
+
+double Seconds(std::chrono::steady_clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
+// The q-quantile (0..1) of the values, nearest rank; 0 when empty.
+double Quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t k = static_cast<size_t>(q * (values.size() - 1) + 0.5);
+  return values[std::min(k, values.size() - 1)];
+}
+
+}  // namespace
+
+Progress::Progress(const std::vector<FeatureFrame>& frames)
+    : frames_(frames),
+      terminal_(isatty(fileno(stdout)) != 0),
+      start_(std::chrono::steady_clock::now()),
+      last_draw_(start_) {}
+
+double Progress::SequenceSeconds(size_t i) const {
+  return frames_.empty() ? 0.0
+                         : 1e-9 * static_cast<double>(frames_[i].t_ns -
+                                                      frames_.front().t_ns);
+}
+
+void Progress::Update(size_t i) {
+  const auto now = std::chrono::steady_clock::now();
+  const double percent = 100.0 * (i + 1) / std::max<size_t>(1, frames_.size());
+  const double wall = std::max(1e-9, Seconds(now - start_));
+  const double rt = SequenceSeconds(i) / wall;
+  if (terminal_) {
+    if (Seconds(now - last_draw_) < 0.1 && i + 1 < frames_.size()) return;
+    last_draw_ = now;
+    const int width = 30;
+    const int filled = static_cast<int>(percent / 100.0 * width);
+    std::printf("\r[%s%s] %zu/%zu frames %5.1f %%  %.1fx real time",
+                std::string(filled, '#').c_str(),
+                std::string(width - filled, '.').c_str(), i + 1, frames_.size(),
+                percent, rt);
+    std::fflush(stdout);
+    return;
+  }
+  const int decile = static_cast<int>(percent / 10.0);
+  if (decile == last_decile_) return;
+  last_decile_ = decile;
+  std::printf("progress: %zu/%zu frames (%.0f %%), %.1fx real time\n", i + 1,
+              frames_.size(), percent, rt);
+}
+
+void Progress::Finish() {
+  if (terminal_) std::printf("\n");
+}
+
+Trajectory WriteOutputs(const std::string& dir,
+                        const std::vector<EstimatorOutput>& outputs) {
+  Trajectory poses;
+  std::vector<StampedState> states;
+  for (const EstimatorOutput& o : outputs) {
+    if (!o.processed || !o.initialized) continue;
+    poses.push_back({o.t_ns, o.p_w_b, o.q_w_b});
+    states.push_back({o.t_ns, o.p_w_b, o.q_w_b, o.v_w, o.b_a, o.b_g});
+  }
+  const std::filesystem::path d(dir);
+  WriteTum((d / "trajectory.tum").string(), poses);
+  WriteStateCsv((d / "states.csv").string(), states);
+  std::printf("wrote %s and %s (%zu poses)\n",
+              (d / "trajectory.tum").string().c_str(),
+              (d / "states.csv").string().c_str(), poses.size());
+  return poses;
+}
+
+void PrintSummary(const EstimatorSummary& s,
+                  const std::vector<FeatureFrame>& frames, double wall_s) {
+  const double span_s =
+      frames.size() < 2
+          ? 0.0
+          : 1e-9 * static_cast<double>(frames.back().t_ns - frames[0].t_ns);
+  std::printf("summary\n");
+  std::printf(
+      "  frames      %lld (processed %lld, before init %lld, skipped "
+      "%lld)\n",
+      (long long)s.frames, (long long)s.frames_processed,
+      (long long)s.frames_before_init,
+      (long long)(s.frames_out_of_order + s.frames_without_imu));
+  std::printf("  keyframes   %lld\n", (long long)s.keyframes);
+  std::printf("  resets      %lld\n", (long long)s.resets);
+  for (const ResetEvent& e : s.reset_log) {
+    std::printf("    at %lld ns: %s\n", (long long)e.t_ns,
+                FailureName(e.reason));
+  }
+  std::printf(
+      "  solver time per step  median %.2f ms, p95 %.2f ms, max %.2f "
+      "ms CPU (%zu steps; wall median %.2f ms)\n",
+      1e3 * Quantile(s.solver_cpu_time_s, 0.5),
+      1e3 * Quantile(s.solver_cpu_time_s, 0.95),
+      1e3 * Quantile(s.solver_cpu_time_s, 1.0), s.solver_cpu_time_s.size(),
+      1e3 * Quantile(s.solver_time_s, 0.5));
+  std::printf(
+      "  solver time split     Jacobians %.2f s, residuals %.2f s, linear "
+      "solver %.2f s, preprocessing %.2f s; %.1f iterations per step\n",
+      s.solver_jacobian_time_s, s.solver_residual_time_s,
+      s.solver_linear_time_s, s.solver_preprocess_time_s,
+      s.solver_time_s.empty()
+          ? 0.0
+          : static_cast<double>(s.solver_iterations) / s.solver_time_s.size());
+  std::printf(
+      "  marginalisation       median %.2f ms, max %.2f ms CPU (%lld, "
+      "%lld failed)\n",
+      1e3 * Quantile(s.marginalization_cpu_time_s, 0.5),
+      1e3 * Quantile(s.marginalization_cpu_time_s, 1.0),
+      (long long)s.marginalizations, (long long)s.marginalization_failures);
+  std::printf(
+      "  landmarks per step    median %.0f; outliers removed: %lld "
+      "sightings, %lld landmarks\n",
+      Quantile(std::vector<double>(s.landmarks_per_step.begin(),
+                                   s.landmarks_per_step.end()),
+               0.5),
+      (long long)s.outlier_sightings_removed,
+      (long long)s.outlier_landmarks_removed);
+  std::printf(
+      "  skipped input         imu non-finite %lld, imu out of order "
+      "%lld, observations %lld, frames without observations %lld\n",
+      (long long)s.imu_non_finite, (long long)s.imu_out_of_order,
+      (long long)s.observations_skipped,
+      (long long)s.frames_without_observations);
+  std::printf("  wall time   %.2f s for %.2f s of data: %.1fx real time\n",
+              wall_s, span_s, wall_s > 0 ? span_s / wall_s : 0.0);
+}
+
+void Evaluate(const std::string& dir, const Trajectory& estimate,
+              const std::vector<StampedState>& ground_truth) {
+  Trajectory truth;
+  for (const StampedState& s : ground_truth) truth.push_back(PoseOf(s));
+  const Association a = Associate(estimate, truth);
+  const Alignment alignment =
+      Align(a.estimate, a.ground_truth, AlignmentMode::kPosYaw);
+  const Trajectory aligned = alignment.Apply(a.estimate);
+  const AbsoluteTrajectoryError ate = ComputeAte(aligned, a.ground_truth);
+  const RelativePoseError rpe =
+      ComputeRpe(aligned, a.ground_truth, 1.0, RpeUnit::kMeters);
+  std::printf(
+      "  ATE (posyaw)  rmse %.4f m, max %.4f m, rotation rmse %.3f "
+      "deg (%zu poses)\n",
+      ate.translation.rmse, ate.translation.max, ate.rotation.rmse, a.size());
+  std::printf(
+      "  RPE (1 m)     rmse %.4f m, rotation rmse %.3f deg (%zu "
+      "pairs)\n",
+      rpe.translation.rmse, rpe.rotation.rmse, rpe.pairs.size());
+  const std::string plot =
+      (std::filesystem::path(dir) / "evaluation.png").string();
+  PlotOptions options;
+  options.title = "vio_replay: posyaw-aligned estimate";
+  WriteEvaluationPlot(plot, a.ground_truth, aligned, ate.translation_m,
+                      options);
+  std::printf("wrote %s\n", plot.c_str());
+}
+
+}  // namespace vio

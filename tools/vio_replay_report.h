@@ -1,0 +1,51 @@
+#ifndef VIO_TOOLS_VIO_REPLAY_REPORT_H_
+#define VIO_TOOLS_VIO_REPLAY_REPORT_H_
+
+// What vio_replay shows and writes: the progress display, the output files,
+// the run summary and the evaluation against ground truth.
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "dataset/trajectory.h"
+#include "estimator/estimator.h"
+
+namespace vio {
+
+// A progress bar on a terminal (frames, percent, real-time factor), redrawn
+// in place; plain lines at every 10 % otherwise.
+class Progress {
+ public:
+  explicit Progress(const std::vector<FeatureFrame>& frames);
+  void Update(size_t frame_index);
+  void Finish();
+
+ private:
+  double SequenceSeconds(size_t frame_index) const;
+
+  const std::vector<FeatureFrame>& frames_;
+  bool terminal_;
+  int last_decile_ = -1;
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_draw_;
+};
+
+// Writes DIR/trajectory.tum and DIR/states.csv from the initialised outputs
+// and returns their poses.
+Trajectory WriteOutputs(const std::string& dir,
+                        const std::vector<EstimatorOutput>& outputs);
+
+// frames, keyframes, resets (with reasons), solver time per step (median,
+// p95, max), marginalisation time, wall time and real-time factor.
+void PrintSummary(const EstimatorSummary& summary,
+                  const std::vector<FeatureFrame>& frames, double wall_s);
+
+// Associates, aligns (posyaw), prints ATE and RPE (1 m of travel) and writes
+// DIR/evaluation.png.
+void Evaluate(const std::string& dir, const Trajectory& estimate,
+              const std::vector<StampedState>& ground_truth);
+
+}  // namespace vio
+
+#endif  // VIO_TOOLS_VIO_REPLAY_REPORT_H_
