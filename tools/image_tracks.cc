@@ -4,6 +4,7 @@
 #include <ctime>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "dataset/features_csv.h"
@@ -106,6 +107,39 @@ std::vector<FeatureFrame> TrackEurocImages(const EurocSequence& sequence,
   }
   summary->cameras[1].unpaired += static_cast<int64_t>(right_by_stamp.size());
   return frames;
+}
+
+std::vector<FeatureFrame> ImageObservations(
+    const EurocSequence& sequence, const FrontendOptions& options,
+    ImageTrackingSummary* summary, ObservationBuilderSummary* builder) {
+  std::vector<FeatureFrame> frames =
+      TrackEurocImages(sequence, options, summary);
+  std::vector<CameraModel> models;
+  for (int c = 0; c < (options.stereo ? 2 : 1); ++c) {
+    models.emplace_back(sequence.cameras[c]);
+  }
+  ObservationBuilder observation_builder(models);
+  for (FeatureFrame& frame : frames) observation_builder.Process(&frame);
+  if (builder) *builder = observation_builder.summary();
+  return frames;
+}
+
+std::string DescribeImageTracking(const ImageTrackingSummary& summary,
+                                  int num_cameras) {
+  std::ostringstream out;
+  out << "  images      " << summary.frames << " frames ("
+      << summary.stereo_frames << " stereo), " << summary.observations[0]
+      << " cam0 + " << summary.observations[1] << " cam1 observations, "
+      << summary.skipped() << " images skipped\n";
+  for (int c = 0; c < num_cameras && c < 2; ++c) {
+    const ImageCounts& n = summary.cameras[c];
+    out << "    cam" << c << ": " << n.used << " used; skipped: " << n.missing
+        << " missing, " << n.unreadable << " unreadable, " << n.wrong_size
+        << " wrong size";
+    if (c > 0) out << "; " << n.unpaired << " without a cam0 partner";
+    out << "\n";
+  }
+  return out.str();
 }
 
 std::string TracksPathForCamera(const std::string& path, int camera) {

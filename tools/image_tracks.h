@@ -17,6 +17,7 @@
 
 #include "config/euroc_sequence.h"
 #include "frontend/frontend_options.h"
+#include "frontend/observation_builder.h"
 #include "geometry/feature_observation.h"
 
 namespace vio {
@@ -49,6 +50,20 @@ struct ImageTrackingSummary {
 std::vector<FeatureFrame> TrackEurocImages(const EurocSequence& sequence,
                                            const FrontendOptions& options,
                                            ImageTrackingSummary* summary);
+
+// TrackEurocImages, then the observation step every feature takes before the
+// estimator (frontend/observation_builder: undistorted xy, image velocity),
+// with the sequence's camera models. `builder` (optional) receives what that
+// step removed.
+std::vector<FeatureFrame> ImageObservations(
+    const EurocSequence& sequence, const FrontendOptions& options,
+    ImageTrackingSummary* summary,
+    ObservationBuilderSummary* builder = nullptr);
+
+// A few lines for a tool's summary: frames, observations and, per camera,
+// the images used and skipped (by reason).
+std::string DescribeImageTracking(const ImageTrackingSummary& summary,
+                                  int num_cameras);
 
 // Where --save-tracks FILE puts camera `camera`'s observations: cam0 in FILE
 // itself, camera N > 0 in FILE with ".camN" inserted before the extension
