@@ -9,12 +9,12 @@
 
 #include "config/yaml_reader.h"
 #include "dataset/csv.h"
+#include "test/testing/expect_error.h"
 #include "test/testing/temp_folder.h"
 
 namespace vio {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::TempFolder;
 
 const std::string kV101 =
@@ -54,16 +54,6 @@ std::string Replaced(std::string text, const std::string& from,
   EXPECT_NE(at, std::string::npos) << from;
   if (at != std::string::npos) text.replace(at, from.size(), to);
   return text;
-}
-
-template <typename F>
-void ExpectConfigError(F f, const std::string& text) {
-  try {
-    f();
-    ADD_FAILURE() << "no ConfigError; expected one containing: " << text;
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr(text));
-  }
 }
 
 // EuRoC's files begin with OpenCV's "%YAML:1.0"; yaml-cpp 0.7 reads it as an
@@ -128,8 +118,9 @@ TEST(EurocSensor, EveryMissingCameraKeyIsNamed) {
         "distortion_coefficients", "resolution", "rate_hz", "T_BS"}) {
     SCOPED_TRACE(key);
     dir.Write("cam.yaml", WithoutKey(yaml, key));
-    ExpectConfigError([&] { ReadEurocCameraYaml(dir.Path("cam.yaml")); },
-                      dir.Path("cam.yaml") + ": " + key + " is missing");
+    ExpectErrorContaining<ConfigError>(
+        [&] { ReadEurocCameraYaml(dir.Path("cam.yaml")); },
+        dir.Path("cam.yaml") + ": " + key + " is missing");
   }
 }
 
@@ -160,8 +151,9 @@ TEST(EurocSensor, BadCameraValuesAreNamed) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.message);
     dir.Write("cam.yaml", Replaced(yaml, c.from, c.to));
-    ExpectConfigError([&] { ReadEurocCameraYaml(dir.Path("cam.yaml")); },
-                      dir.Path("cam.yaml") + ": " + c.message);
+    ExpectErrorContaining<ConfigError>(
+        [&] { ReadEurocCameraYaml(dir.Path("cam.yaml")); },
+        dir.Path("cam.yaml") + ": " + c.message);
   }
 }
 
@@ -173,25 +165,29 @@ TEST(EurocSensor, EveryMissingOrBadImuKeyIsNamed) {
         "accelerometer_random_walk", "gyroscope_random_walk"}) {
     SCOPED_TRACE(key);
     dir.Write("imu.yaml", WithoutKey(yaml, key));
-    ExpectConfigError([&] { ReadEurocImuYaml(dir.Path("imu.yaml")); },
-                      dir.Path("imu.yaml") + ": " + key + " is missing");
+    ExpectErrorContaining<ConfigError>(
+        [&] { ReadEurocImuYaml(dir.Path("imu.yaml")); },
+        dir.Path("imu.yaml") + ": " + key + " is missing");
   }
   dir.Write("imu.yaml", Replaced(yaml, "gyroscope_random_walk: 1.9393e-05",
                                  "gyroscope_random_walk: -1"));
-  ExpectConfigError([&] { ReadEurocImuYaml(dir.Path("imu.yaml")); },
-                    "imu.yaml: gyroscope_random_walk must be > 0");
+  ExpectErrorContaining<ConfigError>(
+      [&] { ReadEurocImuYaml(dir.Path("imu.yaml")); },
+      "imu.yaml: gyroscope_random_walk must be > 0");
 }
 
 TEST(EurocSequence, MissingSensorYamlIsAConfigErrorNamingIt) {
   TempFolder dir;
   dir.Write("mav0/imu0/data.csv", "1000000000,0,0,0,9.8,0,0\n");
   dir.Write("mav0/cam0/features.csv", "1000000000,1,10,20\n");
-  ExpectConfigError([&] { LoadEurocSequence(dir.path()); },
-                    dir.Path("mav0/imu0/sensor.yaml") + ": cannot open");
+  ExpectErrorContaining<ConfigError>(
+      [&] { LoadEurocSequence(dir.path()); },
+      dir.Path("mav0/imu0/sensor.yaml") + ": cannot open");
   dir.Write("mav0/imu0/sensor.yaml",
             ReadText(kV101 + "/mav0/imu0/sensor.yaml"));
-  ExpectConfigError([&] { LoadEurocSequence(dir.path()); },
-                    dir.Path("mav0/cam0/sensor.yaml") + ": cannot open");
+  ExpectErrorContaining<ConfigError>(
+      [&] { LoadEurocSequence(dir.path()); },
+      dir.Path("mav0/cam0/sensor.yaml") + ": cannot open");
   dir.Write("mav0/cam0/sensor.yaml",
             ReadText(kV101 + "/mav0/cam0/sensor.yaml"));
   EXPECT_EQ(LoadEurocSequence(dir.path()).cameras.size(), 1u);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "preintegration/imu_preintegration.h"
+#include "test/testing/expect_error.h"
 
 namespace vio {
 namespace {
@@ -36,18 +37,6 @@ ImuPreintegration Preintegrate(
                            Eigen::Vector3d::Zero(), noise, options);
 }
 
-// Runs f, expects an ImuError and returns its message.
-template <typename F>
-std::string ImuErrorMessage(F f) {
-  try {
-    f();
-  } catch (const ImuError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no ImuError";
-  return "";
-}
-
 TEST(ImuPreintegrationInput, ImuErrorIsAnInvalidArgument) {
   EXPECT_THROW(Preintegrate(0, 0, RestSamples()), std::invalid_argument);
 }
@@ -55,7 +44,7 @@ TEST(ImuPreintegrationInput, ImuErrorIsAnInvalidArgument) {
 TEST(ImuPreintegrationInput, RepeatedStampIsRejected) {
   std::vector<ImuSample> s = RestSamples();
   s[20].t_ns = s[19].t_ns;
-  EXPECT_EQ(ImuErrorMessage([&] { Preintegrate(0, 500000000, s); }),
+  EXPECT_EQ(ErrorMessage<ImuError>([&] { Preintegrate(0, 500000000, s); }),
             "IMU sample at t = 95000000 ns does not come after the previous "
             "one (t = 95000000 ns): stamps must increase");
 }
@@ -64,7 +53,7 @@ TEST(ImuPreintegrationInput, DecreasingStampIsRejectedEvenOutsideTheInterval) {
   // A disordered stream cannot be searched reliably, wherever the disorder is.
   std::vector<ImuSample> s = RestSamples();
   s[150].t_ns = s[148].t_ns - 1;
-  EXPECT_THAT(ImuErrorMessage([&] { Preintegrate(0, 500000000, s); }),
+  EXPECT_THAT(ErrorMessage<ImuError>([&] { Preintegrate(0, 500000000, s); }),
               HasSubstr("IMU sample at t = 739999999 ns does not come after "
                         "the previous one (t = 745000000 ns)"));
 }
@@ -72,21 +61,21 @@ TEST(ImuPreintegrationInput, DecreasingStampIsRejectedEvenOutsideTheInterval) {
 TEST(ImuPreintegrationInput, NanAccelerationIsRejected) {
   std::vector<ImuSample> s = RestSamples();
   s[10].acc.y() = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THAT(ImuErrorMessage([&] { Preintegrate(0, 500000000, s); }),
+  EXPECT_THAT(ErrorMessage<ImuError>([&] { Preintegrate(0, 500000000, s); }),
               HasSubstr("IMU sample at t = 50000000 ns is not finite"));
 }
 
 TEST(ImuPreintegrationInput, InfiniteRateIsRejected) {
   std::vector<ImuSample> s = RestSamples();
   s[30].gyr.z() = -std::numeric_limits<double>::infinity();
-  EXPECT_THAT(ImuErrorMessage([&] { Preintegrate(0, 500000000, s); }),
+  EXPECT_THAT(ErrorMessage<ImuError>([&] { Preintegrate(0, 500000000, s); }),
               HasSubstr("IMU sample at t = 150000000 ns is not finite"));
 }
 
 TEST(ImuPreintegrationInput, GapLongerThanTheLimitIsRejected) {
   std::vector<ImuSample> s = RestSamples();
   s.erase(s.begin() + 41, s.begin() + 50);  // 200 ms .. 250 ms: a 50 ms gap
-  EXPECT_EQ(ImuErrorMessage([&] { Preintegrate(0, 500000000, s); }),
+  EXPECT_EQ(ErrorMessage<ImuError>([&] { Preintegrate(0, 500000000, s); }),
             "IMU gap of 0.050000 s between t = 200000000 ns and t = "
             "250000000 ns exceeds max_sample_gap (0.020000 s)");
 }
@@ -106,35 +95,36 @@ TEST(ImuPreintegrationInput, GapUpToTheConfiguredLimitIsAccepted) {
 }
 
 TEST(ImuPreintegrationInput, IntervalStartingBeforeTheSamplesIsRejected) {
-  EXPECT_EQ(
-      ImuErrorMessage([&] { Preintegrate(-1, 500000000, RestSamples()); }),
-      "IMU samples span [0, 1000000000] ns and do not cover the interval "
-      "[-1, 500000000] ns");
+  EXPECT_EQ(ErrorMessage<ImuError>(
+                [&] { Preintegrate(-1, 500000000, RestSamples()); }),
+            "IMU samples span [0, 1000000000] ns and do not cover the interval "
+            "[-1, 500000000] ns");
 }
 
 TEST(ImuPreintegrationInput, IntervalEndingAfterTheSamplesIsRejected) {
-  EXPECT_THAT(
-      ImuErrorMessage([&] { Preintegrate(0, 1000000001, RestSamples()); }),
-      HasSubstr("do not cover the interval [0, 1000000001] ns"));
+  EXPECT_THAT(ErrorMessage<ImuError>(
+                  [&] { Preintegrate(0, 1000000001, RestSamples()); }),
+              HasSubstr("do not cover the interval [0, 1000000001] ns"));
 }
 
 TEST(ImuPreintegrationInput, NoSamplesIsRejected) {
-  EXPECT_EQ(ImuErrorMessage([&] { Preintegrate(0, 5, {}); }),
+  EXPECT_EQ(ErrorMessage<ImuError>([&] { Preintegrate(0, 5, {}); }),
             "no IMU samples for the interval [0, 5] ns");
 }
 
 TEST(ImuPreintegrationInput, EmptyOrReversedIntervalIsRejected) {
   EXPECT_EQ(
-      ImuErrorMessage([&] { Preintegrate(7, 7, RestSamples()); }),
+      ErrorMessage<ImuError>([&] { Preintegrate(7, 7, RestSamples()); }),
       "IMU interval [7, 7] ns is empty: its end must come after its start");
-  EXPECT_THAT(ImuErrorMessage([&] { Preintegrate(9, 3, RestSamples()); }),
-              HasSubstr("IMU interval [9, 3] ns is empty"));
+  EXPECT_THAT(
+      ErrorMessage<ImuError>([&] { Preintegrate(9, 3, RestSamples()); }),
+      HasSubstr("IMU interval [9, 3] ns is empty"));
 }
 
 TEST(ImuPreintegrationInput, InvalidNoiseIsRejected) {
   ImuNoise noise;
   noise.gyroscope_noise_density = -0.1;
-  EXPECT_THAT(ImuErrorMessage(
+  EXPECT_THAT(ErrorMessage<ImuError>(
                   [&] { Preintegrate(0, 500000000, RestSamples(), noise); }),
               HasSubstr("ImuNoise: gyroscope_noise_density must be > 0"));
 }
@@ -143,7 +133,7 @@ TEST(ImuPreintegrationInput, InvalidOptionsAreRejected) {
   PreintegrationOptions options;
   options.repropagate_gyr_bias_change = 0.0;
   EXPECT_THAT(
-      ImuErrorMessage([&] {
+      ErrorMessage<ImuError>([&] {
         Preintegrate(0, 500000000, RestSamples(), ImuNoise(), options);
       }),
       HasSubstr(
@@ -154,9 +144,9 @@ TEST(ImuPreintegrationInput, NonFiniteBiasesAreRejected) {
   ImuPreintegration pre = Preintegrate(0, 500000000, RestSamples());
   const Eigen::Vector3d nan =
       Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  EXPECT_EQ(ImuErrorMessage([&] { pre.Repropagate(nan, nan); }),
+  EXPECT_EQ(ErrorMessage<ImuError>([&] { pre.Repropagate(nan, nan); }),
             "biases for the IMU interval [0, 500000000] ns are not finite");
-  EXPECT_THAT(ImuErrorMessage([&] {
+  EXPECT_THAT(ErrorMessage<ImuError>([&] {
                 pre.UpdateBiasEstimate(Eigen::Vector3d::Zero(), nan);
               }),
               HasSubstr("are not finite"));
@@ -164,7 +154,7 @@ TEST(ImuPreintegrationInput, NonFiniteBiasesAreRejected) {
 
 TEST(ImuPreintegrationInput, MergingIntervalsThatDoNotTouchIsRejected) {
   const std::vector<ImuSample> s = RestSamples();
-  EXPECT_EQ(ImuErrorMessage([&] {
+  EXPECT_EQ(ErrorMessage<ImuError>([&] {
               ImuPreintegration::Merge(Preintegrate(0, 300000000, s),
                                        Preintegrate(400000000, 500000000, s));
             }),

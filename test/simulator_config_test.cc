@@ -9,12 +9,12 @@
 
 #include "config/yaml_reader.h"
 #include "dataset/sim_trajectory.h"
+#include "test/testing/expect_error.h"
 #include "test/testing/temp_folder.h"
 
 namespace vio {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::TempFolder;
 
 std::string Preset(const std::string& name) {
@@ -26,16 +26,6 @@ std::string ReadText(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-template <typename F>
-void ExpectConfigError(F f, const std::string& text) {
-  try {
-    f();
-    ADD_FAILURE() << "no ConfigError; expected one containing: " << text;
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr(text));
-  }
 }
 
 // Fastest speed [m/s] and body rate [rad/s] of a motion after its blend.
@@ -125,8 +115,8 @@ TEST(SimulatorConfig, MissingWrongOrOutOfRangeKeysAreNamed) {
     ASSERT_NE(at, std::string::npos) << c.from;
     altered.replace(at, c.from.size(), c.to);
     dir.Write("sim.yaml", altered);
-    ExpectConfigError([&] { LoadSimulatorOptions(dir.Path("sim.yaml")); },
-                      c.message);
+    ExpectErrorContaining<ConfigError>(
+        [&] { LoadSimulatorOptions(dir.Path("sim.yaml")); }, c.message);
   }
 }
 

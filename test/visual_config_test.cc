@@ -5,20 +5,10 @@
 
 #include <string>
 
+#include "test/testing/expect_error.h"
+
 namespace vio {
 namespace {
-
-using ::testing::HasSubstr;
-
-template <typename F>
-void ExpectConfigError(F f, const std::string& text) {
-  try {
-    f();
-    ADD_FAILURE() << "no ConfigError; expected one containing: " << text;
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr(text));
-  }
-}
 
 VisualFactorOptions Read(const std::string& text) {
   return ReadVisualOptions(YamlNode::LoadString(text, "mem.yaml"));
@@ -46,30 +36,31 @@ TEST(VisualConfig, ReadsCauchyAndNone) {
 }
 
 TEST(VisualConfig, MissingKeysAreErrorsNamingThem) {
-  ExpectConfigError([] { Read("imu: {rate_hz: 200}"); },
-                    "mem.yaml: visual is missing");
-  ExpectConfigError([] { Read("visual: {robust_kernel: {type: none}}"); },
-                    "mem.yaml: visual.sigma_px is missing");
-  ExpectConfigError(
+  ExpectErrorContaining<ConfigError>([] { Read("imu: {rate_hz: 200}"); },
+                                     "mem.yaml: visual is missing");
+  ExpectErrorContaining<ConfigError>(
+      [] { Read("visual: {robust_kernel: {type: none}}"); },
+      "mem.yaml: visual.sigma_px is missing");
+  ExpectErrorContaining<ConfigError>(
       [] { Read("visual: {sigma_px: 1.5, robust_kernel: {type: huber}}"); },
       "mem.yaml: visual.robust_kernel.scale is missing");
 }
 
 TEST(VisualConfig, BadValuesAreErrorsNamingKeyAndValue) {
-  ExpectConfigError(
+  ExpectErrorContaining<ConfigError>(
       [] { Read("visual: {sigma_px: 1.5, robust_kernel: {type: tukey}}"); },
       "mem.yaml: visual.robust_kernel.type must be one of none, huber, "
       "cauchy (got 'tukey')");
-  ExpectConfigError(
+  ExpectErrorContaining<ConfigError>(
       [] { Read("visual: {sigma_px: -1, robust_kernel: {type: none}}"); },
       "mem.yaml: visual.sigma_px must be a finite number > 0 (got -1)");
-  ExpectConfigError(
+  ExpectErrorContaining<ConfigError>(
       [] {
         Read("visual: {sigma_px: 1.5, robust_kernel: {type: huber, scale: 0}}");
       },
       "mem.yaml: visual.robust_kernel.scale must be a finite number > 0 "
       "(got 0)");
-  ExpectConfigError(
+  ExpectErrorContaining<ConfigError>(
       [] { Read("visual: {sigma_px: wide, robust_kernel: {type: none}}"); },
       "mem.yaml: visual.sigma_px must be a number (got 'wide')");
 }

@@ -3,21 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "test/testing/expect_error.h"
+
 namespace vio {
 namespace {
-
-using ::testing::HasSubstr;
-
-// Expects `f` to throw ConfigError whose message contains `text`.
-template <typename F>
-void ExpectConfigError(F f, const std::string& text) {
-  try {
-    f();
-    ADD_FAILURE() << "no ConfigError; expected one containing: " << text;
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr(text));
-  }
-}
 
 const char kDoc[] = R"(
 imu:
@@ -40,29 +29,34 @@ TEST(YamlReader, ReadsTypedValues) {
 
 TEST(YamlReader, MissingKeyNamesFileAndPath) {
   const YamlNode imu = YamlNode::LoadString(kDoc, "mem.yaml").Child("imu");
-  ExpectConfigError([&] { imu.Get<double>("acc_noise_density"); },
-                    "mem.yaml: imu.acc_noise_density is missing");
+  ExpectErrorContaining<ConfigError>(
+      [&] { imu.Get<double>("acc_noise_density"); },
+      "mem.yaml: imu.acc_noise_density is missing");
 }
 
 TEST(YamlReader, WrongTypeNamesValue) {
   const YamlNode imu = YamlNode::LoadString(kDoc, "mem.yaml").Child("imu");
-  ExpectConfigError([&] { imu.Get<double>("name"); },
-                    "mem.yaml: imu.name must be a number (got 'adis')");
-  ExpectConfigError([&] { imu.Get<int>("gyro_noise_density"); },
-                    "imu.gyro_noise_density must be an integer");
-  ExpectConfigError([&] { imu.GetVector("flags", 2); },
-                    "imu.flags must have 2 numbers (got 3)");
-  ExpectConfigError([&] { imu.Child("rate_hz"); },
-                    "imu.rate_hz must be a mapping");
+  ExpectErrorContaining<ConfigError>(
+      [&] { imu.Get<double>("name"); },
+      "mem.yaml: imu.name must be a number (got 'adis')");
+  ExpectErrorContaining<ConfigError>(
+      [&] { imu.Get<int>("gyro_noise_density"); },
+      "imu.gyro_noise_density must be an integer");
+  ExpectErrorContaining<ConfigError>([&] { imu.GetVector("flags", 2); },
+                                     "imu.flags must have 2 numbers (got 3)");
+  ExpectErrorContaining<ConfigError>([&] { imu.Child("rate_hz"); },
+                                     "imu.rate_hz must be a mapping");
 }
 
 TEST(YamlReader, UnreadableAndMalformedFiles) {
-  ExpectConfigError([] { YamlNode::LoadFile("/nonexistent/x.yaml"); },
-                    "/nonexistent/x.yaml: cannot open the file");
-  ExpectConfigError([] { YamlNode::LoadString("a: [1, 2", "bad.yaml"); },
-                    "bad.yaml:");
-  ExpectConfigError([] { YamlNode::LoadString("- 1\n- 2\n", "list.yaml"); },
-                    "list.yaml: the top level must be a mapping");
+  ExpectErrorContaining<ConfigError>(
+      [] { YamlNode::LoadFile("/nonexistent/x.yaml"); },
+      "/nonexistent/x.yaml: cannot open the file");
+  ExpectErrorContaining<ConfigError>(
+      [] { YamlNode::LoadString("a: [1, 2", "bad.yaml"); }, "bad.yaml:");
+  ExpectErrorContaining<ConfigError>(
+      [] { YamlNode::LoadString("- 1\n- 2\n", "list.yaml"); },
+      "list.yaml: the top level must be a mapping");
 }
 
 struct FakeOptions {
@@ -77,8 +71,8 @@ struct FakeOptions {
 TEST(YamlReader, ValidateAtPrefixesFileAndBlock) {
   const YamlNode imu = YamlNode::LoadString(kDoc, "mem.yaml").Child("imu");
   FakeOptions options;
-  ExpectConfigError([&] { ValidateAt(imu, options); },
-                    "mem.yaml: imu.rate_hz must be > 0");
+  ExpectErrorContaining<ConfigError>([&] { ValidateAt(imu, options); },
+                                     "mem.yaml: imu.rate_hz must be > 0");
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "factors/check/factor_cases.h"
+#include "tools/curve_fitting/curve_check_case.h"
 
 namespace {
 
@@ -130,7 +131,10 @@ std::vector<Row> CheckCase(const vio::FactorCase& c, const Args& args) {
 int main(int argc, char** argv) {
   try {
     const Args args = ParseArgs(argc, argv);
-    const std::vector<vio::FactorCase> cases = vio::AllFactorCases();
+    // The project's factors, then the curve fitting exercise's cost function
+    // (a tool's, so it cannot sit in factors/check/).
+    std::vector<vio::FactorCase> cases = vio::AllFactorCases();
+    cases.push_back(vio::MakeCurveSampleCase());
     if (args.list) {
       for (const auto& c : cases) {
         std::cout << std::left << std::setw(24) << c.name << c.description
