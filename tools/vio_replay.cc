@@ -1,5 +1,6 @@
 // vio_replay: the main job. Replays a sequence folder (EuRoC ASL layout with
-// features.csv, e.g. one written by vio_sim) through the estimator, writes the
+// features.csv, e.g. one written by vio_sim, or with images, tracked by the
+// frontend) through the estimator, writes the
 // trajectory (TUM and state CSV) and, when the folder has ground truth,
 // evaluates it (posyaw alignment, ATE, RPE) and draws the plot. With no
 // sequence it simulates the default preset into a cache folder first.
@@ -15,11 +16,13 @@
 
 #include "config/estimator_config.h"
 #include "config/euroc_sequence.h"
+#include "config/frontend_config.h"
 #include "config/imu_config.h"
 #include "config/visual_config.h"
 #include "dataset/sim_folder.h"
 #include "estimator/sequence_runner.h"
 #include "frontend/observation_builder.h"
+#include "tools/image_tracks.h"
 #include "tools/vio_replay_report.h"
 
 namespace {
@@ -28,10 +31,12 @@ namespace fs = std::filesystem;
 using namespace vio;  // NOLINT(build/namespaces): a tool's main file
 
 constexpr char kUsage[] =
-    "usage: vio_replay [SEQUENCE] [--config FILE] [--out DIR] [--help]\n"
+    "usage: vio_replay [SEQUENCE] [--config FILE] [--out DIR]\n"
+    "                  [--save-tracks FILE] [--help]\n"
     "\n"
     "Replays SEQUENCE (a folder in the EuRoC ASL layout whose cameras carry\n"
-    "features.csv, e.g. written by vio_sim) through the estimator. Writes\n"
+    "features.csv, e.g. written by vio_sim, or images: data.csv + data/,\n"
+    "tracked by the frontend) through the estimator. Writes\n"
     "DIR/trajectory.tum and DIR/states.csv; with ground truth in the folder\n"
     "also DIR/evaluation.png, and prints ATE and RPE (posyaw alignment).\n"
     "Without SEQUENCE it simulates the default preset (vio_sim's built-in\n"
@@ -42,6 +47,13 @@ constexpr char kUsage[] =
     "                 (default: the built-in defaults = config/default.yaml;\n"
     "                 config/stereo.yaml for stereo)\n"
     "  --out DIR      output folder (default vio_replay_out)\n"
+    "  --save-tracks FILE  the observations given to the estimator, in the\n"
+    "                 features.csv format: cam0 to FILE, cam1 to FILE with\n"
+    "                 .cam1 before the extension\n"
+    "\n"
+    "Images: the frontend: block of the config (built-in defaults without\n"
+    "--config) sets the tracker; mono or stereo follows estimator.use_stereo.\n"
+    "Missing, unreadable and wrong-size images are skipped and counted.\n"
     "\n"
     "One thread (estimator.solver.num_threads: 1) makes runs bit-for-bit\n"
     "repeatable on the same machine.\n";
@@ -50,6 +62,7 @@ struct Args {
   std::string sequence;  // empty: the simulated default
   std::string config;    // empty: built-in defaults
   std::string out = "vio_replay_out";
+  std::string save_tracks;  // empty: not written
   bool help = false;
 };
 
@@ -65,6 +78,8 @@ Args ParseArgs(int argc, char** argv) {
       args.config = value();
     } else if (a == "--out") {
       args.out = value();
+    } else if (a == "--save-tracks") {
+      args.save_tracks = value();
     } else if (a == "--help" || a == "-h") {
       args.help = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -83,6 +98,8 @@ struct Config {
   ImuConfig imu;
   VisualFactorOptions visual;
   EstimatorOptions estimator;
+  FrontendOptions frontend;
+  std::string frontend_missing;  // non-empty: the file has no frontend: block
 };
 
 Config LoadConfig(const std::string& path) {
@@ -92,6 +109,14 @@ Config LoadConfig(const std::string& path) {
   c.imu = LoadImuConfig(root);
   c.visual = ReadVisualOptions(root);
   c.estimator = ReadEstimatorOptions(root);
+  // Only image sequences need the frontend: its block is required then.
+  if (root.Has("frontend")) {
+    c.frontend = ReadFrontendOptions(root.Child("frontend"));
+  } else {
+    c.frontend_missing = root.Where("frontend") +
+                         " is missing (needed to "
+                         "track images)";
+  }
   return c;
 }
 
@@ -106,6 +131,34 @@ std::string SequenceFolder(const Args& args) {
   return cache;
 }
 
+// True when every used camera has images and none has features.csv: the
+// frontend tracks them.
+bool UsesImages(const EurocSequence& seq, int cameras_used) {
+  for (int c = 0; c < cameras_used; ++c) {
+    const EurocCamera& camera = seq.data.cameras[c];
+    if (camera.has_features || !camera.has_images) return false;
+  }
+  return true;
+}
+
+// Frames with xy and velocity, tracked from the images.
+std::vector<FeatureFrame> TrackedObservations(const EurocSequence& seq,
+                                              int cameras_used, Config config,
+                                              ImageTrackingSummary* summary) {
+  if (!config.frontend_missing.empty()) {
+    throw ConfigError(config.frontend_missing);
+  }
+  config.frontend.stereo = cameras_used == 2;
+  const FrontendOptions& f = config.frontend;
+  std::printf(
+      "frontend: %s, %d features, min distance %.0f px, CLAHE %s, "
+      "fundamental check %s\n",
+      f.stereo ? "stereo" : "mono", f.tracker.max_features,
+      f.tracker.min_distance_px, f.tracker.clahe ? "on" : "off",
+      f.tracker.fundamental_check ? "on" : "off");
+  return ImageObservations(seq, config.frontend, summary);
+}
+
 // Frames with xy and velocity, from each camera's features.csv.
 std::vector<FeatureFrame> Observations(const EurocSequence& seq,
                                        int cameras_used) {
@@ -113,9 +166,8 @@ std::vector<FeatureFrame> Observations(const EurocSequence& seq,
   for (int c = 0; c < cameras_used; ++c) {
     if (!seq.data.cameras[c].has_features) {
       throw std::runtime_error(seq.data.cameras[c].folder +
-                               " has no features.csv (vio_replay takes "
-                               "feature observations; image tracking is the "
-                               "frontend's)");
+                               " has no features.csv (and not every used "
+                               "camera has images to track)");
     }
     models.emplace_back(seq.cameras[c]);
   }
@@ -169,7 +221,17 @@ int main(int argc, char** argv) {
     }
     std::printf("sequence %s\n%s", folder.c_str(),
                 DescribeEstimatorOptions(config.estimator).c_str());
-    const std::vector<FeatureFrame> frames = Observations(seq, used);
+    const bool images = UsesImages(seq, used);
+    ImageTrackingSummary image_summary;
+    const std::vector<FeatureFrame> frames =
+        images ? TrackedObservations(seq, used, config, &image_summary)
+               : Observations(seq, used);
+    if (!args.save_tracks.empty()) {
+      for (const std::string& file :
+           SaveTracks(args.save_tracks, frames, used)) {
+        std::printf("wrote %s\n", file.c_str());
+      }
+    }
     Estimator estimator(config.estimator, config.visual, seq.imu.noise,
                         config.imu.preintegration, Cameras(seq, used));
     Progress progress(frames);
@@ -187,6 +249,24 @@ int main(int argc, char** argv) {
     std::printf("  time offset t_d      %.6f s (%s)\n",
                 estimator.time_offset_s(),
                 config.estimator.estimate_time_offset ? "estimated" : "fixed");
+    if (images) {
+      const double n = static_cast<double>(image_summary.frames);
+      std::printf("%s", DescribeImageTracking(image_summary, used).c_str());
+      std::printf(
+          "  frontend    %.2f ms/frame CPU, %.2f ms wall (%.1f "
+          "frames/s); image decoding %.2f ms/frame\n",
+          n > 0 ? 1e3 * image_summary.track_cpu_seconds / n : 0.0,
+          n > 0 ? 1e3 * image_summary.track_seconds / n : 0.0,
+          image_summary.track_seconds > 0 ? n / image_summary.track_seconds
+                                          : 0.0,
+          n > 0 ? 1e3 * image_summary.read_seconds / n : 0.0);
+      const double total_s =
+          image_summary.read_seconds + image_summary.track_seconds + wall_s;
+      std::printf(
+          "  full replay %.1f frames/s wall (images, frontend and "
+          "estimator)\n",
+          total_s > 0 ? n / total_s : 0.0);
+    }
     if (!seq.data.ground_truth.empty()) {
       Evaluate(args.out, estimate, seq.data.ground_truth);
     }

@@ -1,0 +1,84 @@
+#ifndef VIO_FRONTEND_FRONTEND_OPTIONS_H_
+#define VIO_FRONTEND_FRONTEND_OPTIONS_H_
+
+// Options of the image frontend (KLT tracking, stereo matching), kept apart
+// from the OpenCV code so that config/ can fill them without seeing OpenCV.
+// Every field has a default with its unit; Validate() checks ranges and, on
+// failure, writes a message that starts with the offending field's YAML name
+// (config/frontend_config.h maps the two one to one).
+
+#include <string>
+
+namespace vio {
+
+// Pyramidal Lucas-Kanade settings (cv::calcOpticalFlowPyrLK).
+struct KltOptions {
+  int window_px = 21;        // side of the square tracking window [px], odd
+  int pyramid_levels = 3;    // levels above the full-resolution image [-]
+  int max_iterations = 30;   // per pyramid level [-]
+  double epsilon_px = 0.01;  // stop when an update is below this [px]
+
+  // `prefix` is prepended to field names in the message ("klt_" in YAML).
+  bool Validate(const std::string& prefix, std::string* message) const;
+};
+
+// Monocular frame-to-frame tracking (frontend/feature_tracker.h).
+struct FeatureTrackerOptions {
+  int max_features = 150;         // tracks kept per frame, refilled to this
+  double min_distance_px = 30.0;  // between any two features [px]
+  // Shi-Tomasi acceptance: minimum eigenvalue relative to the strongest
+  // corner of the image (cv::goodFeaturesToTrack qualityLevel) [-].
+  double corner_quality = 0.002;
+  // Features closer than this to the image border are dropped [px].
+  int border_px = 2;
+  KltOptions klt;
+  // A track survives when tracking it back from the new frame lands within
+  // this distance of where it started [px].
+  double max_forward_backward_px = 0.5;
+  // Fundamental-matrix RANSAC on undistorted points, rescaled to a virtual
+  // pinhole of focal virtual_focal_px so that the threshold is in pixels.
+  bool fundamental_check = true;
+  double fundamental_threshold_px = 1.0;  // epipolar distance [px]
+  double fundamental_confidence = 0.99;   // RANSAC confidence, in (0, 1)
+  double virtual_focal_px = 460.0;        // [px]
+  // Contrast-limited adaptive histogram equalisation (cv::CLAHE) of every
+  // image before tracking, for dark scenes.
+  bool clahe = false;
+  double clahe_clip_limit = 3.0;  // contrast limit [-]
+  int clahe_tiles = 8;            // tiles per image side [-]
+
+  bool Validate(std::string* message) const;
+};
+
+// Left-to-right matching of a calibrated stereo pair
+// (frontend/stereo_matcher.h).
+struct StereoMatcherOptions {
+  KltOptions klt;
+  // Equalise the histograms of both images before matching
+  // (cv::equalizeHist). The two cameras expose differently (mean grey 145
+  // against 130 on V1_01) and LK assumes equal brightness: on the first
+  // V1_01 pair 36 of 150 features pass the reverse check without it, 86
+  // with it.
+  bool equalize = true;
+  // Matching right -> left must return within this distance [px].
+  double max_reverse_px = 0.5;
+  // Distance of the right observation to the epipolar line of the left one,
+  // measured on the undistorted right image [px].
+  double max_epipolar_px = 1.0;
+
+  bool Validate(std::string* message) const;
+};
+
+// The whole frontend: tracking on cam0, and matching into cam1 when stereo.
+struct FrontendOptions {
+  bool stereo = true;  // false: cam0 only (monocular)
+  FeatureTrackerOptions tracker;
+  StereoMatcherOptions stereo_matcher;
+
+  // Messages start with "tracker." or "stereo_matcher." and the field.
+  bool Validate(std::string* message) const;
+};
+
+}  // namespace vio
+
+#endif  // VIO_FRONTEND_FRONTEND_OPTIONS_H_

@@ -1,0 +1,54 @@
+#ifndef VIO_FRONTEND_IMAGE_FRONTEND_H_
+#define VIO_FRONTEND_IMAGE_FRONTEND_H_
+
+// The frontend as a whole: KLT tracking on cam0 and, in stereo, matching of
+// every cam0 feature into cam1. Turns one (left, right) image pair into one
+// FeatureFrame of pixel observations; the undistorted xy and the velocity
+// are filled afterwards by frontend/observation_builder, exactly as for the
+// observations of a simulated features.csv.
+
+#include <cstdint>
+#include <memory>
+#include <opencv2/core.hpp>
+
+#include "frontend/feature_tracker.h"
+#include "frontend/frontend_options.h"
+#include "frontend/stereo_matcher.h"
+#include "geometry/camera_model.h"
+#include "geometry/feature_observation.h"
+
+namespace vio {
+
+// What the last ImageFrontend::Process call did.
+struct FrontendStats {
+  TrackerStats tracker;
+  StereoStats stereo;
+  bool stereo_matched = false;  // false in mono, or when the right was empty
+};
+
+class ImageFrontend {
+ public:
+  // `cam1` is required when options.stereo and ignored otherwise. Throws
+  // std::invalid_argument on invalid options or a missing cam1.
+  ImageFrontend(const CameraModel& cam0, const CameraModel* cam1,
+                const FrontendOptions& options);
+
+  // Tracks `left` (cam0) and, in stereo with a non-empty `right`, matches
+  // into it; an empty `right` (a missing cam1 image) gives a cam0-only
+  // frame. Images must be 8-bit grey of their camera's size, else
+  // std::invalid_argument (callers skip and count such images first).
+  FeatureFrame Process(int64_t t_ns, const cv::Mat& left,
+                       const cv::Mat& right = cv::Mat());
+
+  bool stereo() const { return matcher_ != nullptr; }
+  const FrontendStats& stats() const { return stats_; }
+
+ private:
+  FeatureTracker tracker_;
+  std::unique_ptr<StereoMatcher> matcher_;
+  FrontendStats stats_;
+};
+
+}  // namespace vio
+
+#endif  // VIO_FRONTEND_IMAGE_FRONTEND_H_

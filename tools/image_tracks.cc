@@ -1,0 +1,167 @@
+#include "tools/image_tracks.h"
+
+#include <chrono>
+#include <ctime>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "dataset/features_csv.h"
+#include "frontend/image_frontend.h"
+
+namespace vio {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Decodes an image as 8-bit grey; an empty Mat (and a count) when it cannot
+// be read or is not of the calibration's size.
+cv::Mat ReadImage(const std::string& path, const CameraCalibration& camera,
+                  ImageCounts* counts) {
+  cv::Mat image = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  if (image.empty()) {
+    ++counts->unreadable;
+    return cv::Mat();
+  }
+  if (image.cols != camera.width || image.rows != camera.height) {
+    ++counts->wrong_size;
+    return cv::Mat();
+  }
+  ++counts->used;
+  return image;
+}
+
+}  // namespace
+
+int64_t ImageTrackingSummary::skipped() const {
+  int64_t n = 0;
+  for (const ImageCounts& c : cameras) {
+    n += c.missing + c.unreadable + c.wrong_size;
+  }
+  return n;
+}
+
+std::vector<FeatureFrame> TrackEurocImages(const EurocSequence& sequence,
+                                           const FrontendOptions& options,
+                                           ImageTrackingSummary* summary) {
+  const std::vector<EurocCamera>& cameras = sequence.data.cameras;
+  const int needed = options.stereo ? 2 : 1;
+  if (static_cast<int>(cameras.size()) < needed ||
+      static_cast<int>(sequence.cameras.size()) < needed) {
+    throw std::invalid_argument(
+        sequence.data.folder + ": " + (options.stereo ? "stereo" : "mono") +
+        " tracking needs cam0" + (options.stereo ? " and cam1" : "") +
+        " images");
+  }
+  for (int c = 0; c < needed; ++c) {
+    if (!cameras[c].has_images) {
+      throw std::invalid_argument(sequence.data.folder + ": cam" +
+                                  std::to_string(c) + " has no data.csv");
+    }
+  }
+  *summary = ImageTrackingSummary();
+  const CameraModel cam0(sequence.cameras[0]);
+  const CameraModel cam1(sequence.cameras[needed - 1]);
+  ImageFrontend frontend(cam0, options.stereo ? &cam1 : nullptr, options);
+
+  std::map<int64_t, const ImageEntry*> right_by_stamp;
+  if (options.stereo) {
+    summary->cameras[1].missing = cameras[1].missing_images;
+    for (const ImageEntry& e : cameras[1].images) right_by_stamp[e.t_ns] = &e;
+  }
+  summary->cameras[0].missing = cameras[0].missing_images;
+  std::vector<FeatureFrame> frames;
+  for (const ImageEntry& entry : cameras[0].images) {
+    Clock::time_point start = Clock::now();
+    const cv::Mat left =
+        ReadImage(entry.path, sequence.cameras[0], &summary->cameras[0]);
+    cv::Mat right;
+    auto it = right_by_stamp.find(entry.t_ns);
+    if (it != right_by_stamp.end()) {
+      if (!left.empty()) {
+        right = ReadImage(it->second->path, sequence.cameras[1],
+                          &summary->cameras[1]);
+      } else {
+        ++summary->cameras[1].unpaired;
+      }
+      right_by_stamp.erase(it);
+    }
+    summary->read_seconds += SecondsSince(start);
+    if (left.empty()) continue;
+    start = Clock::now();
+    const std::clock_t cpu_start = std::clock();
+    frames.push_back(frontend.Process(entry.t_ns, left, right));
+    summary->track_cpu_seconds +=
+        static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    summary->track_seconds += SecondsSince(start);
+    ++summary->frames;
+    if (frontend.stats().stereo_matched) ++summary->stereo_frames;
+    for (const FeatureObservation& o : frames.back().observations) {
+      ++summary->observations[o.camera == 0 ? 0 : 1];
+    }
+  }
+  summary->cameras[1].unpaired += static_cast<int64_t>(right_by_stamp.size());
+  return frames;
+}
+
+std::vector<FeatureFrame> ImageObservations(
+    const EurocSequence& sequence, const FrontendOptions& options,
+    ImageTrackingSummary* summary, ObservationBuilderSummary* builder) {
+  std::vector<FeatureFrame> frames =
+      TrackEurocImages(sequence, options, summary);
+  std::vector<CameraModel> models;
+  for (int c = 0; c < (options.stereo ? 2 : 1); ++c) {
+    models.emplace_back(sequence.cameras[c]);
+  }
+  ObservationBuilder observation_builder(models);
+  for (FeatureFrame& frame : frames) observation_builder.Process(&frame);
+  if (builder) *builder = observation_builder.summary();
+  return frames;
+}
+
+std::string DescribeImageTracking(const ImageTrackingSummary& summary,
+                                  int num_cameras) {
+  std::ostringstream out;
+  out << "  images      " << summary.frames << " frames ("
+      << summary.stereo_frames << " stereo), " << summary.observations[0]
+      << " cam0 + " << summary.observations[1] << " cam1 observations, "
+      << summary.skipped() << " images skipped\n";
+  for (int c = 0; c < num_cameras && c < 2; ++c) {
+    const ImageCounts& n = summary.cameras[c];
+    out << "    cam" << c << ": " << n.used << " used; skipped: " << n.missing
+        << " missing, " << n.unreadable << " unreadable, " << n.wrong_size
+        << " wrong size";
+    if (c > 0) out << "; " << n.unpaired << " without a cam0 partner";
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string TracksPathForCamera(const std::string& path, int camera) {
+  if (camera == 0) return path;
+  const size_t slash = path.find_last_of('/');
+  size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
+    dot = path.size();
+  }
+  return path.substr(0, dot) + ".cam" + std::to_string(camera) +
+         path.substr(dot);
+}
+
+std::vector<std::string> SaveTracks(const std::string& path,
+                                    const std::vector<FeatureFrame>& frames,
+                                    int num_cameras) {
+  std::vector<std::string> written;
+  for (int camera = 0; camera < num_cameras; ++camera) {
+    written.push_back(TracksPathForCamera(path, camera));
+    WriteFeaturesCsv(written.back(), frames, camera);
+  }
+  return written;
+}
+
+}  // namespace vio

@@ -1,0 +1,82 @@
+#ifndef VIO_TOOLS_IMAGE_TRACKS_H_
+#define VIO_TOOLS_IMAGE_TRACKS_H_
+
+// Images of an EuRoC-layout sequence -> feature frames, for the tools that
+// replay recorded images (vio_track, vio_replay). This is where image files
+// are read: the frontend itself only sees cv::Mat. A bad image never stops
+// the run: it is skipped and counted, and the summary says how many.
+//
+// Frames follow cam0: each cam0 image is one frame; in stereo, the cam1
+// image with the same stamp is matched into it. A frame whose cam0 image is
+// bad is dropped; a frame whose cam1 image is bad or absent is tracked on
+// cam0 alone.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "config/euroc_sequence.h"
+#include "frontend/frontend_options.h"
+#include "frontend/observation_builder.h"
+#include "geometry/feature_observation.h"
+
+namespace vio {
+
+// Counts for one camera.
+struct ImageCounts {
+  int64_t used = 0;        // images that reached the frontend
+  int64_t missing = 0;     // listed in data.csv, absent on disk: skipped
+  int64_t unreadable = 0;  // present but not decodable: skipped
+  int64_t wrong_size = 0;  // not the sensor.yaml resolution: skipped
+  int64_t unpaired = 0;    // cam1 only: no cam0 image at its stamp: unused
+};
+
+struct ImageTrackingSummary {
+  ImageCounts cameras[2];          // cam0, cam1
+  int64_t frames = 0;              // frames emitted (one per good cam0 image)
+  int64_t stereo_frames = 0;       // of which matched into cam1
+  int64_t observations[2] = {};    // emitted per camera
+  double read_seconds = 0.0;       // wall time decoding images [s]
+  double track_seconds = 0.0;      // wall time in the frontend [s]
+  double track_cpu_seconds = 0.0;  // process CPU time in the frontend [s]
+
+  int64_t skipped() const;  // missing + unreadable + wrong size, both cameras
+};
+
+// Tracks the sequence's images (cam0, and cam1 when options.stereo). The
+// frames carry feature_id, camera and uv; xy and velocity are left to
+// frontend/observation_builder. Throws std::invalid_argument when the
+// sequence has no cam0 images, or (in stereo) no cam1 images.
+std::vector<FeatureFrame> TrackEurocImages(const EurocSequence& sequence,
+                                           const FrontendOptions& options,
+                                           ImageTrackingSummary* summary);
+
+// TrackEurocImages, then the observation step every feature takes before the
+// estimator (frontend/observation_builder: undistorted xy, image velocity),
+// with the sequence's camera models. `builder` (optional) receives what that
+// step removed.
+std::vector<FeatureFrame> ImageObservations(
+    const EurocSequence& sequence, const FrontendOptions& options,
+    ImageTrackingSummary* summary,
+    ObservationBuilderSummary* builder = nullptr);
+
+// A few lines for a tool's summary: frames, observations and, per camera,
+// the images used and skipped (by reason).
+std::string DescribeImageTracking(const ImageTrackingSummary& summary,
+                                  int num_cameras);
+
+// Where --save-tracks FILE puts camera `camera`'s observations: cam0 in FILE
+// itself, camera N > 0 in FILE with ".camN" inserted before the extension
+// ("tracks.csv" -> "tracks.cam1.csv").
+std::string TracksPathForCamera(const std::string& path, int camera);
+
+// Writes every camera's observations of `frames` in the features.csv format
+// (dataset/features_csv.h), one file per camera (TracksPathForCamera).
+// Returns the files written. Throws DatasetError when one cannot be written.
+std::vector<std::string> SaveTracks(const std::string& path,
+                                    const std::vector<FeatureFrame>& frames,
+                                    int num_cameras);
+
+}  // namespace vio
+
+#endif  // VIO_TOOLS_IMAGE_TRACKS_H_
