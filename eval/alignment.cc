@@ -69,11 +69,42 @@ Alignment AlignUmeyama(const Points& p_e, const Points& p_w,
 //   sum_i y'_xy^T R2 x'_xy = cos(theta) (H00 + H11) + sin(theta) (H10 - H01)
 //                          = A cos(theta) + B sin(theta),
 //   maximal at theta = atan2(B, A), unique unless A = B = 0.
-Alignment AlignPosYaw(const Points& p_e, const Points& p_w) {
+// A static ground truth: the yaw of each q_gt * q_est^-1 (a rotation about z
+// when both attitudes share the gravity direction), averaged on the circle
+// so that angles near +-pi do not cancel.
+double YawFromOrientations(const Trajectory& estimate,
+                           const Trajectory& ground_truth) {
+  double sum_sin = 0.0, sum_cos = 0.0;
+  for (size_t i = 0; i < estimate.size(); ++i) {
+    const Eigen::Matrix3d M =
+        (ground_truth[i].q_w_b * estimate[i].q_w_b.conjugate())
+            .toRotationMatrix();
+    const double yaw = std::atan2(M(1, 0), M(0, 0));
+    sum_sin += std::sin(yaw);
+    sum_cos += std::cos(yaw);
+  }
+  return std::atan2(sum_sin, sum_cos);
+}
+
+Alignment AlignPosYaw(const Points& p_e, const Points& p_w,
+                      const Trajectory& estimate,
+                      const Trajectory& ground_truth) {
   const Eigen::Vector3d x_mean = p_e.rowwise().mean();
   const Eigen::Vector3d y_mean = p_w.rowwise().mean();
   const Points x = p_e.colwise() - x_mean;
   const Points y = p_w.colwise() - y_mean;
+  const double gt_spread =
+      std::sqrt(y.topRows<2>().squaredNorm() / static_cast<double>(y.cols()));
+  if (gt_spread < kPosYawMinSpread) {
+    Alignment a;
+    a.mode = AlignmentMode::kPosYaw;
+    a.yaw_from_orientations = true;
+    a.R_w_e = Eigen::AngleAxisd(YawFromOrientations(estimate, ground_truth),
+                                Eigen::Vector3d::UnitZ())
+                  .matrix();
+    a.t_w_e = y_mean - a.R_w_e * x_mean;
+    return a;
+  }
   const Eigen::Matrix2d H = y.topRows<2>() * x.topRows<2>().transpose();
   const double A = H(0, 0) + H(1, 1);
   const double B = H(1, 0) - H(0, 1);
@@ -165,7 +196,7 @@ Alignment Align(const Trajectory& estimate, const Trajectory& ground_truth,
     case AlignmentMode::kNone:
       return Alignment{};
     case AlignmentMode::kPosYaw:
-      return AlignPosYaw(p_e, p_w);
+      return AlignPosYaw(p_e, p_w, estimate, ground_truth);
     case AlignmentMode::kSe3:
     case AlignmentMode::kSim3:
       return AlignUmeyama(p_e, p_w, mode);

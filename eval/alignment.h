@@ -18,6 +18,10 @@
 //   posyaw  translation + rotation about the gravity axis z (4 DoF): the
 //           unobservable directions of visual-inertial odometry when gravity
 //           is known. Never rotates about x or y. Derived in alignment.cc.
+//           When the ground truth spans less than kPosYawMinSpread in x-y (a
+//           vehicle standing still), positions cannot tell the yaw: it is
+//           then the circular mean of the yaw of q_gt * q_est^-1 over the
+//           associated poses (the only case that uses orientations).
 //
 // Reference: S. Umeyama, "Least-squares estimation of transformation
 // parameters between two point patterns", IEEE PAMI 13(4), 1991, eqs. 34-43.
@@ -40,9 +44,15 @@ const char* AlignmentModeName(AlignmentMode mode);
 // posyaw, 3 (not collinear) for se3 and sim3.
 size_t MinimumPoses(AlignmentMode mode);
 
+// RMS distance [m] of the ground-truth positions from their mean in x-y below
+// which posyaw takes its yaw from the orientations.
+constexpr double kPosYawMinSpread = 0.05;
+
 // A similarity from the estimate's world E to the ground truth's world W.
 struct Alignment {
   AlignmentMode mode = AlignmentMode::kNone;
+  // posyaw only: the yaw came from the orientations (see kPosYawMinSpread).
+  bool yaw_from_orientations = false;
   Eigen::Matrix3d R_w_e = Eigen::Matrix3d::Identity();
   Eigen::Vector3d t_w_e = Eigen::Vector3d::Zero();  // [m]
   double scale = 1.0;                               // [-] 1 except for sim3
@@ -56,8 +66,9 @@ struct Alignment {
 // Aligns `estimate` to `ground_truth`, which must be associated (equal sizes,
 // element i with element i; std::invalid_argument otherwise). Throws EvalError
 // when there are fewer than MinimumPoses(mode) poses or the positions are
-// degenerate for the mode (collinear for se3/sim3, all on one vertical line
-// for posyaw), naming the mode and the count.
+// degenerate for the mode (collinear for se3/sim3; for posyaw a spread
+// ground truth whose x-y cross-covariance vanishes), naming the mode and the
+// count.
 Alignment Align(const Trajectory& estimate, const Trajectory& ground_truth,
                 AlignmentMode mode);
 

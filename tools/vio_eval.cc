@@ -151,6 +151,11 @@ void PrintAlignment(const vio::Alignment& a) {
             << " deg about " << Join(aa.axis()) << '\n'
             << "alignment translation " << Join(a.t_w_e) << " m\n"
             << "alignment scale " << a.scale << '\n';
+  if (a.yaw_from_orientations) {
+    std::cout << "alignment yaw from the orientations: the ground truth "
+                 "spans less than "
+              << vio::kPosYawMinSpread << " m in x-y\n";
+  }
 }
 
 std::string BaseName(const std::string& path) {

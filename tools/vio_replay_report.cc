@@ -158,12 +158,19 @@ void Evaluate(const std::string& dir, const Trajectory& estimate,
       ComputeRpe(aligned, a.ground_truth, 1.0, RpeUnit::kMeters);
   std::printf(
       "  ATE (posyaw)  rmse %.4f m, max %.4f m, rotation rmse %.3f "
-      "deg (%zu poses)\n",
-      ate.translation.rmse, ate.translation.max, ate.rotation.rmse, a.size());
-  std::printf(
-      "  RPE (1 m)     rmse %.4f m, rotation rmse %.3f deg (%zu "
-      "pairs)\n",
-      rpe.translation.rmse, rpe.rotation.rmse, rpe.pairs.size());
+      "deg (%zu poses%s)\n",
+      ate.translation.rmse, ate.translation.max, ate.rotation.rmse, a.size(),
+      alignment.yaw_from_orientations
+          ? "; still ground truth: yaw aligned from orientations"
+          : "");
+  if (rpe.pairs.empty()) {
+    std::printf("  RPE (1 m)     n/a (no two poses 1 m of travel apart)\n");
+  } else {
+    std::printf(
+        "  RPE (1 m)     rmse %.4f m, rotation rmse %.3f deg (%zu "
+        "pairs)\n",
+        rpe.translation.rmse, rpe.rotation.rmse, rpe.pairs.size());
+  }
   const std::string plot =
       (std::filesystem::path(dir) / "evaluation.png").string();
   PlotOptions options;
