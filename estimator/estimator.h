@@ -127,6 +127,8 @@ class Estimator {
   bool initialized() const { return initialized_; }
   // The current camera-IMU time offset [s].
   double time_offset_s() const { return window_.t_d; }
+  // The extrinsic of camera 0 or 1, as estimated (or held fixed).
+  Eigen::Isometry3d T_b_c(int camera) const { return window_.T_b_c(camera); }
 
  private:
   bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
