@@ -10,12 +10,12 @@
 #include <iomanip>
 #include <iostream>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "factors/check/factor_cases.h"
+#include "tools/command_line.h"
 #include "tools/curve_fitting/curve_check_case.h"
 
 namespace {
@@ -49,37 +49,23 @@ constexpr char kUsage[] =
     "  --list       list the factors and exit\n"
     "  --help       this text\n";
 
-template <typename T>
-T ParseNumber(const std::string& flag, const std::string& text) {
-  std::istringstream in(text);
-  T value{};
-  if (!(in >> value) || !in.eof()) {
-    throw std::invalid_argument(flag + " expects a number (got '" + text +
-                                "')");
-  }
-  return value;
-}
-
 Args ParseArgs(int argc, char** argv) {
   Args args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
+  vio::CommandLine line(argc, argv);
+  while (line.Next()) {
+    const std::string a = line.Current();
     if (a == "--help" || a == "-h") {
       std::cout << kUsage;
       std::exit(0);
     } else if (a == "--seed") {
-      args.seed = ParseNumber<unsigned>(a, value());
+      args.seed = line.Number<unsigned>();
     } else if (a == "--trials") {
-      args.trials = ParseNumber<int>(a, value());
+      args.trials = line.Number<int>();
       if (args.trials < 1) throw std::invalid_argument("--trials must be >= 1");
     } else if (a == "--factor") {
-      args.factor = value();
+      args.factor = line.Value();
     } else if (a == "--step") {
-      args.step = ParseNumber<double>(a, value());
+      args.step = line.Number<double>();
       if (!(args.step > 0.0)) throw std::invalid_argument("--step must be > 0");
     } else if (a == "--list") {
       args.list = true;

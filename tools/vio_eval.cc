@@ -16,6 +16,7 @@
 #include "eval/association.h"
 #include "eval/metrics.h"
 #include "eval/plot.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -57,22 +58,13 @@ constexpr char kUsage[] =
     "  --rpe-deltas L   comma-separated RPE deltas (default 1,2,5,10)\n"
     "  --help           this text\n";
 
-double ParseDouble(const std::string& flag, const std::string& text) {
-  std::istringstream in(text);
-  double value = 0.0;
-  if (!(in >> value) || !in.eof()) {
-    throw std::invalid_argument(flag + " expects a number (got '" + text +
-                                "')");
-  }
-  return value;
-}
-
 std::vector<double> ParseList(const std::string& flag,
                               const std::string& text) {
   std::vector<double> values;
   std::stringstream in(text);
   std::string item;
-  while (std::getline(in, item, ',')) values.push_back(ParseDouble(flag, item));
+  while (std::getline(in, item, ','))
+    values.push_back(vio::ParseNumber<double>(flag, item));
   if (values.empty()) throw std::invalid_argument(flag + " expects a list");
   return values;
 }
@@ -80,23 +72,20 @@ std::vector<double> ParseList(const std::string& flag,
 Args ParseArgs(int argc, char** argv) {
   Args args;
   std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(arg + " expects a value");
-      return argv[++i];
-    };
+  vio::CommandLine line(argc, argv);
+  while (line.Next()) {
+    const std::string arg = line.Current();
     if (arg == "--help" || arg == "-h") {
       args.help = true;
       return args;
     } else if (arg == "--align") {
-      args.align = vio::ParseAlignmentMode(value());
+      args.align = vio::ParseAlignmentMode(line.Value());
     } else if (arg == "--max-diff") {
-      args.association.max_diff = ParseDouble(arg, value());
+      args.association.max_diff = line.Number<double>();
     } else if (arg == "--plot") {
-      args.plot_path = value();
+      args.plot_path = line.Value();
     } else if (arg == "--rpe-unit") {
-      const std::string unit = value();
+      const std::string unit = line.Value();
       if (unit != "m" && unit != "f") {
         throw std::invalid_argument("--rpe-unit expects m or f (got '" + unit +
                                     "')");
@@ -104,7 +93,7 @@ Args ParseArgs(int argc, char** argv) {
       args.rpe_unit =
           unit == "m" ? vio::RpeUnit::kMeters : vio::RpeUnit::kFrames;
     } else if (arg == "--rpe-deltas") {
-      args.rpe_deltas = ParseList(arg, value());
+      args.rpe_deltas = ParseList(arg, line.Value());
     } else if (!arg.empty() && arg[0] == '-' && arg.size() > 1) {
       throw std::invalid_argument("unknown option " + arg + "\n" + kUsage);
     } else {

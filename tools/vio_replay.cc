@@ -22,6 +22,7 @@
 #include "dataset/sim_folder.h"
 #include "estimator/sequence_runner.h"
 #include "frontend/observation_builder.h"
+#include "tools/command_line.h"
 #include "tools/image_tracks.h"
 #include "tools/vio_replay_report.h"
 
@@ -68,18 +69,15 @@ struct Args {
 
 Args ParseArgs(int argc, char** argv) {
   Args args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " expects a value");
-      return argv[++i];
-    };
+  vio::CommandLine line(argc, argv);
+  while (line.Next()) {
+    const std::string a = line.Current();
     if (a == "--config") {
-      args.config = value();
+      args.config = line.Value();
     } else if (a == "--out") {
-      args.out = value();
+      args.out = line.Value();
     } else if (a == "--save-tracks") {
-      args.save_tracks = value();
+      args.save_tracks = line.Value();
     } else if (a == "--help" || a == "-h") {
       args.help = true;
     } else if (!a.empty() && a[0] == '-') {

@@ -12,6 +12,7 @@
 
 #include "config/simulator_config.h"
 #include "dataset/sim_folder.h"
+#include "tools/command_line.h"
 
 namespace {
 
@@ -40,23 +41,17 @@ constexpr char kUsage[] =
     "  --seed N       overrides the preset's seed (0 <= N < 2^32); the same\n"
     "                 seed and configuration give the same bytes\n";
 
-std::string Value(int argc, char** argv, int* i) {
-  if (*i + 1 >= argc) {
-    throw std::invalid_argument(std::string(argv[*i]) + " expects a value");
-  }
-  return argv[++*i];
-}
-
 Args ParseArgs(int argc, char** argv) {
   Args args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
+  vio::CommandLine line(argc, argv);
+  while (line.Next()) {
+    const std::string flag = line.Current();
     if (flag == "--config") {
-      args.config = Value(argc, argv, &i);
+      args.config = line.Value();
     } else if (flag == "--out") {
-      args.out = Value(argc, argv, &i);
+      args.out = line.Value();
     } else if (flag == "--seed") {
-      const std::string text = Value(argc, argv, &i);
+      const std::string text = line.Value();
       std::istringstream in(text);
       if (!(in >> args.seed) || !in.eof() || args.seed < 0 ||
           args.seed > 0xffffffffLL) {

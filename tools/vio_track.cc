@@ -13,6 +13,7 @@
 
 #include "config/euroc_sequence.h"
 #include "config/frontend_config.h"
+#include "tools/command_line.h"
 #include "tools/image_tracks.h"
 
 namespace {
@@ -33,16 +34,13 @@ struct Arguments {
 
 Arguments Parse(int argc, char** argv) {
   Arguments args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-      return argv[++i];
-    };
+  vio::CommandLine line(argc, argv);
+  while (line.Next()) {
+    const std::string a = line.Current();
     if (a == "--config") {
-      args.config = value();
+      args.config = line.Value();
     } else if (a == "--save-tracks") {
-      args.save_tracks = value();
+      args.save_tracks = line.Value();
     } else if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       std::exit(0);

@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "tools/command_line.h"
 #include "tools/curve_fitting/curve_ceres.h"
 #include "tools/curve_fitting/curve_plot.h"
 #include "tools/curve_fitting/curve_problem.h"
@@ -54,64 +54,50 @@ constexpr char kUsage[] =
     "  --plot FILE    write a PNG of the samples, the truth and both fits\n"
     "  --help         this text\n";
 
-template <typename T>
-T ParseNumber(const std::string& flag, const std::string& text) {
-  std::istringstream in(text);
-  T value{};
-  if (!(in >> value) || !in.eof()) {
-    throw std::invalid_argument(flag + " expects a number (got '" + text +
-                                "')");
-  }
-  return value;
-}
-
 Args ParseArgs(int argc, char** argv) {
   Args args;
   vio::KernelType kernel = vio::KernelType::kNone;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
+  vio::CommandLine line(argc, argv);
+  while (line.Next()) {
+    const std::string a = line.Current();
     if (a == "--help" || a == "-h") {
       args.help = true;
     } else if (a == "--a") {
-      args.problem.truth[vio::kCurveA] = ParseNumber<double>(a, value());
+      args.problem.truth[vio::kCurveA] = line.Number<double>();
     } else if (a == "--b") {
-      args.problem.truth[vio::kCurveB] = ParseNumber<double>(a, value());
+      args.problem.truth[vio::kCurveB] = line.Number<double>();
     } else if (a == "--c") {
-      args.problem.truth[vio::kCurveC] = ParseNumber<double>(a, value());
+      args.problem.truth[vio::kCurveC] = line.Number<double>();
     } else if (a == "--n") {
-      args.problem.num_samples = ParseNumber<int>(a, value());
+      args.problem.num_samples = line.Number<int>();
     } else if (a == "--sigma") {
-      args.problem.sigma = ParseNumber<double>(a, value());
+      args.problem.sigma = line.Number<double>();
     } else if (a == "--seed") {
-      const long long seed = ParseNumber<long long>(a, value());
+      const long long seed = line.Number<long long>();
       if (seed < 0 || seed > 0xffffffffLL) {
         throw std::invalid_argument("--seed must be in [0, 2^32)");
       }
       args.problem.seed = static_cast<uint32_t>(seed);
     } else if (a == "--damping") {
-      const std::string name = value();
+      const std::string name = line.Value();
       if (!vio::ParseLmDamping(name, &args.lm.damping)) {
         throw std::invalid_argument(
             "--damping expects nielsen or marquardt (got '" + name + "')");
       }
     } else if (a == "--tau") {
-      args.lm.tau = ParseNumber<double>(a, value());
+      args.lm.tau = line.Number<double>();
     } else if (a == "--outliers") {
-      args.problem.outlier_fraction = ParseNumber<double>(a, value());
+      args.problem.outlier_fraction = line.Number<double>();
     } else if (a == "--kernel") {
-      const std::string name = value();
+      const std::string name = line.Value();
       if (!vio::ParseKernelType(name, &kernel)) {
         throw std::invalid_argument(
             "--kernel expects none, huber or cauchy (got '" + name + "')");
       }
     } else if (a == "--max-iter") {
-      args.lm.max_iterations = ParseNumber<int>(a, value());
+      args.lm.max_iterations = line.Number<int>();
     } else if (a == "--plot") {
-      args.plot = value();
+      args.plot = line.Value();
     } else {
       throw std::invalid_argument("unknown option '" + a + "' (see --help)");
     }
