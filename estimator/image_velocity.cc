@@ -7,7 +7,8 @@ Eigen::Vector2d PredictedImageVelocity(const Eigen::Vector3d& p_c,
                                        const Eigen::Vector3d& v_w,
                                        const Eigen::Vector3d& w_b,
                                        const Eigen::Isometry3d& T_b_c) {
-  if (!(p_c.z() > 0.0)) return Eigen::Vector2d::Zero();
+  // An inverse depth of 0 gives an infinite point: no velocity either.
+  if (!p_c.allFinite() || !(p_c.z() > 0.0)) return Eigen::Vector2d::Zero();
   // p_c = R_c_w (p_w - p_w_c); with d R_w_c / dt = R_w_c [w_c]x,
   // d R_c_w / dt = -[w_c]x R_c_w, hence d p_c / dt = -w_c x p_c - R_c_w v_w_c.
   const Eigen::Matrix3d R_c_b = T_b_c.linear().transpose();

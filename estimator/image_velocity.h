@@ -27,7 +27,8 @@ namespace vio {
 
 // d xy / dt [1/s] of the point p_c [m] (in camera c, z > 0) seen from a body
 // at T_w_b moving with v_w [m/s] and turning with w_b [rad/s] (gyroscope
-// minus bias, body frame). Zero when p_c.z is not positive.
+// minus bias, body frame). Zero when p_c is not finite or p_c.z is not
+// positive.
 Eigen::Vector2d PredictedImageVelocity(const Eigen::Vector3d& p_c,
                                        const Eigen::Isometry3d& T_w_b,
                                        const Eigen::Vector3d& v_w,

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "geometry/so3.h"
@@ -54,12 +55,16 @@ TEST(ImageVelocity, MatchesTheDerivativeOfTheProjection) {
   }
 }
 
-TEST(ImageVelocity, IsZeroForAPointBehindTheCamera) {
-  const Eigen::Vector2d v = PredictedImageVelocity(
-      Eigen::Vector3d(0.1, 0.2, -1.0), Eigen::Isometry3d::Identity(),
-      Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(0.0, 0.5, 0.0),
-      Eigen::Isometry3d::Identity());
-  EXPECT_EQ(v, Eigen::Vector2d::Zero());
+TEST(ImageVelocity, IsZeroForAPointBehindTheCameraOrAtInfinity) {
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p_c :
+       {Eigen::Vector3d(0.1, 0.2, -1.0), Eigen::Vector3d(inf, inf, inf),
+        Eigen::Vector3d(Eigen::Vector3d(0.1, 0.2, 1.0) / 0.0)}) {
+    const Eigen::Vector2d v = PredictedImageVelocity(
+        p_c, Eigen::Isometry3d::Identity(), Eigen::Vector3d(1.0, 0.0, 0.0),
+        Eigen::Vector3d(0.0, 0.5, 0.0), Eigen::Isometry3d::Identity());
+    EXPECT_EQ(v, Eigen::Vector2d::Zero()) << p_c.transpose();
+  }
 }
 
 }  // namespace
