@@ -40,6 +40,21 @@ double ThreadCpuSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+// The gyroscope reading at t_ns [rad/s], linearly interpolated between the
+// samples around it (the nearest one at either end); imu is sorted by stamp.
+Eigen::Vector3d GyroAt(const std::vector<ImuSample>& imu, int64_t t_ns) {
+  if (imu.empty()) return Eigen::Vector3d::Zero();
+  const auto after = std::lower_bound(
+      imu.begin(), imu.end(), t_ns,
+      [](const ImuSample& s, int64_t t) { return s.t_ns < t; });
+  if (after == imu.end()) return imu.back().gyr;
+  if (after == imu.begin() || after->t_ns == t_ns) return after->gyr;
+  const ImuSample& before = *(after - 1);
+  const double u = static_cast<double>(t_ns - before.t_ns) /
+                   static_cast<double>(after->t_ns - before.t_ns);
+  return (1.0 - u) * before.gyr + u * after->gyr;
+}
+
 }  // namespace
 
 Estimator::Estimator(const EstimatorOptions& options,
@@ -121,9 +136,8 @@ EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
   }
   have_frame_ = true;
   last_frame_t_ns_ = frame.t_ns;
-  const FeatureFrame lagged = LaggedVelocities(frame);
   if (!initialized_) {
-    if (!TryInitialize(lagged, t_imu_ns)) {
+    if (!TryInitialize(frame, t_imu_ns)) {
       ++summary_.frames_before_init;
       EstimatorOutput o;
       o.t_ns = frame.t_ns;
@@ -134,42 +148,10 @@ EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
     return last_output_ = OutputOf(*window_.frames.back(), frame.t_ns);
   }
   EstimatorOutput out;
-  if (!ProcessFrame(lagged, t_imu_ns, &out)) return skipped;
+  if (!ProcessFrame(frame, t_imu_ns, &out)) return skipped;
   ++summary_.frames_processed;
   TrimImu();
   return last_output_ = out;
-}
-
-FeatureFrame Estimator::LaggedVelocities(const FeatureFrame& frame) {
-  // The time-offset factor shifts xy_k by (t_d - t_d_k) v_k. With the
-  // frontend's v_k = (xy_k - xy_(k-1)) / dt, v_k carries the noise of xy_k
-  // itself and the estimate is drawn towards t_d - t_d_k = dt (errors in
-  // variables). The velocity of the two previous observations of the track
-  // does not share that noise.
-  FeatureFrame out = frame;
-  std::map<std::pair<int64_t, int>, TrackHistory> next;
-  for (FeatureObservation& o : out.observations) {
-    const std::pair<int64_t, int> key(o.feature_id, o.camera);
-    TrackHistory h;
-    const auto it = tracks_.find(key);
-    if (it != tracks_.end()) h = it->second;
-    if (options_.estimate_time_offset) {
-      o.velocity = Eigen::Vector2d::Zero();
-      if (h.count >= 2 && h.t1_ns > h.t0_ns) {
-        o.velocity =
-            (h.xy1 - h.xy0) / (1e-9 * static_cast<double>(h.t1_ns - h.t0_ns));
-      }
-    }
-    h.t0_ns = h.t1_ns;
-    h.xy0 = h.xy1;
-    h.t1_ns = frame.t_ns;
-    h.xy1 = o.xy;
-    h.count = std::min(h.count + 1, 2);
-    next[key] = h;
-  }
-  // Tracks not seen in this frame have ended.
-  tracks_.swap(next);
-  return out;
 }
 
 bool Estimator::TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns) {
@@ -196,6 +178,7 @@ void Estimator::StartWindow(const FeatureFrame& frame, int64_t t_imu_ns,
   f->t_ns = frame.t_ns;
   f->t_imu_ns = t_imu_ns;
   f->t_d_at_stamp = window_.t_d;
+  f->gyr_b = GyroAt(imu_, t_imu_ns);
   f->keyframe = true;
   f->p_w_b() = state.p_w_b;
   f->q_w_b() = state.q_w_b.normalized();
@@ -265,6 +248,7 @@ bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   f->t_ns = frame.t_ns;
   f->t_imu_ns = t_imu_ns;
   f->t_d_at_stamp = window_.t_d;
+  f->gyr_b = GyroAt(imu_, t_imu_ns);
   // Prediction: p_j = p_i + v_i T + g T^2 / 2 + R_i dp,
   //             v_j = v_i + g T + R_i dv,  q_j = q_i dq.
   const Eigen::Isometry3d T_w_i = prev.T_w_b();

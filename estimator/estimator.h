@@ -26,7 +26,6 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -128,6 +127,8 @@ class Estimator {
   bool initialized() const { return initialized_; }
   // The current camera-IMU time offset [s].
   double time_offset_s() const { return window_.t_d; }
+  // The extrinsic of camera 0 or 1, as estimated (or held fixed).
+  Eigen::Isometry3d T_b_c(int camera) const { return window_.T_b_c(camera); }
 
  private:
   bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
@@ -149,7 +150,6 @@ class Estimator {
   void SetPriorOnOldest(double velocity_sigma);
   void Reset(int64_t t_ns, Failure reason);
   void TrimImu();
-  FeatureFrame LaggedVelocities(const FeatureFrame& frame);
   CameraPoseFn PoseFn() const;
   EstimatorOutput OutputOf(const WindowFrame& frame, int64_t t_ns) const;
 
@@ -171,15 +171,6 @@ class Estimator {
   int64_t last_frame_t_ns_ = 0;
   bool have_frame_ = false;
   EstimatorOutput last_output_;
-  // Each track's two latest observations (camera stamp [ns], xy), by
-  // (feature id, camera): for the lagged image velocity (LaggedVelocities).
-  struct TrackHistory {
-    int64_t t0_ns = 0, t1_ns = 0;  // t1 the later one
-    Eigen::Vector2d xy0 = Eigen::Vector2d::Zero();
-    Eigen::Vector2d xy1 = Eigen::Vector2d::Zero();
-    int count = 0;
-  };
-  std::map<std::pair<int64_t, int>, TrackHistory> tracks_;
   EstimatorSummary summary_;
 };
 

@@ -97,8 +97,8 @@ struct EstimatorOptions {
   double gravity_magnitude = 9.81;  // [m/s^2]
   bool estimate_extrinsics = false;
   // Camera-IMU time offset t_d, t_imu = t_cam + t_d [s]: frame poses sit at
-  // t_cam + t_d. Estimated online (camera-0 factors) when asked: experimental,
-  // not yet reliable with noisy features (README, Figures).
+  // t_cam + t_d. Estimated online (camera-0 factors, image velocity predicted
+  // from the state) when asked, within +-0.02 s (README, Online calibration).
   bool estimate_time_offset = false;
   double initial_time_offset_s = 0.0;
   // Stereo: use camera 1 too (the sequence must have it).

@@ -32,6 +32,9 @@ struct WindowFrame {
   int64_t t_imu_ns = 0;       // IMU time of the pose: t_ns + t_d [ns]
   double t_d_at_stamp = 0.0;  // the t_d that placed the pose [s]
   bool keyframe = false;
+  // Gyroscope reading at t_imu_ns, bias not removed [rad/s]: the angular
+  // rate for the predicted image velocity (estimator/image_velocity.h).
+  Eigen::Vector3d gyr_b = Eigen::Vector3d::Zero();
   std::array<double, 7> pose{0, 0, 0, 0, 0, 0, 1};
   std::array<double, 9> speed_bias{};
   // The IMU interval from the previous window frame to this one; null for
@@ -52,6 +55,12 @@ struct WindowFrame {
   }
   Eigen::Map<Eigen::Vector3d> b_g() {
     return Eigen::Map<Eigen::Vector3d>(&speed_bias[kSbBg]);
+  }
+  Eigen::Vector3d v_w_value() const {
+    return Eigen::Vector3d(speed_bias.data() + kSbV);
+  }
+  Eigen::Vector3d b_g_value() const {
+    return Eigen::Vector3d(speed_bias.data() + kSbBg);
   }
   Eigen::Isometry3d T_w_b() const {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

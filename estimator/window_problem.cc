@@ -5,6 +5,7 @@
 #include <set>
 #include <utility>
 
+#include "estimator/image_velocity.h"
 #include "factors/imu_factor.h"
 #include "factors/reprojection_factor.h"
 #include "factors/robust_kernel.h"
@@ -128,6 +129,11 @@ void WindowProblem::AddLandmark(Landmark* l) {
   WindowFrame* frame_i = window_->Find(a.frame_id);
   double* ext0 = window_->extrinsics[0].data();
   double* ext1 = window_->extrinsics[1].data();
+  // For the time offset: the anchor's point and image velocity.
+  const Eigen::Vector3d p_c_i = Eigen::Vector3d(a.xy.x(), a.xy.y(), 1.0) / *rho;
+  const Eigen::Vector2d velocity_i = settings_.estimate_time_offset
+                                         ? MotionVelocity(*frame_i, p_c_i)
+                                         : Eigen::Vector2d::Zero();
   for (size_t k = anchor + 1; k < l->sightings.size(); ++k) {
     const Sighting& s = l->sightings[k];
     const double sqrt_info =
@@ -146,10 +152,14 @@ void WindowProblem::AddLandmark(Landmark* l) {
     } else {
       double* pose_j = window_->Find(s.frame_id)->pose.data();
       if (s.camera == 0 && settings_.estimate_time_offset) {
-        const double t_d_j = window_->Find(s.frame_id)->t_d_at_stamp;
+        const WindowFrame& frame_j = *window_->Find(s.frame_id);
+        const Eigen::Vector3d p_c_j = window_->T_w_c(s.frame_id, 0).inverse() *
+                                      window_->T_w_c(a.frame_id, 0) * p_c_i;
         r.owned = std::make_unique<TimedReprojectionFactor>(
-            TimedObservation{a.xy, a.velocity, frame_i->t_d_at_stamp},
-            TimedObservation{s.xy, s.velocity, t_d_j}, sqrt_info);
+            TimedObservation{a.xy, velocity_i, frame_i->t_d_at_stamp},
+            TimedObservation{s.xy, MotionVelocity(frame_j, p_c_j),
+                             frame_j.t_d_at_stamp},
+            sqrt_info);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, rho, &window_->t_d};
       } else if (s.camera == 0) {
         r.owned = std::make_unique<ReprojectionFactor>(a.xy, s.xy, sqrt_info);
@@ -164,6 +174,15 @@ void WindowProblem::AddLandmark(Landmark* l) {
     AddResidual(std::move(r));
     ++num_visual_;
   }
+}
+
+Eigen::Vector2d WindowProblem::MotionVelocity(
+    const WindowFrame& frame, const Eigen::Vector3d& p_c) const {
+  // The current estimates (velocity, gyroscope bias, depth), not the
+  // tracker's finite difference: see estimator/image_velocity.h.
+  return PredictedImageVelocity(p_c, frame.T_w_b(), frame.v_w_value(),
+                                frame.gyr_b - frame.b_g_value(),
+                                window_->T_b_c(0));
 }
 
 ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {

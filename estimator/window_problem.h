@@ -122,6 +122,10 @@ class WindowProblem {
   void AddBlock(double* values, int size, bool pose, bool constant);
   void AddResidual(Residual residual);
   void AddLandmark(Landmark* landmark);
+  // Image velocity d xy / dt [1/s] of the camera-0 point p_c [m] in frame,
+  // predicted from the frame's current state (TimedReprojectionFactor).
+  Eigen::Vector2d MotionVelocity(const WindowFrame& frame,
+                                 const Eigen::Vector3d& p_c) const;
 
   Window* window_;
   FeatureManager* features_;

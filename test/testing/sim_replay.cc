@@ -49,15 +49,42 @@ SimReplay ReplaySimulation(const Simulation& simulation,
                 Prepare(simulation).frames);
 }
 
+namespace {
+
+SimReplay Run(const Simulation& simulation, const EstimatorOptions& options,
+              const std::vector<EstimatorCamera>& cameras,
+              const std::vector<ImuSample>& imu,
+              const std::vector<FeatureFrame>& frames);
+
+}  // namespace
+
+SimReplay ReplayWithCameras(const Simulation& simulation,
+                            const EstimatorOptions& options,
+                            const std::vector<EstimatorCamera>& cameras) {
+  return Run(simulation, options, cameras, simulation.imu,
+             Prepare(simulation).frames);
+}
+
 SimReplay Replay(const Simulation& simulation, const EstimatorOptions& options,
                  const std::vector<ImuSample>& imu,
                  const std::vector<FeatureFrame>& frames) {
+  return Run(simulation, options, Prepare(simulation).cameras, imu, frames);
+}
+
+namespace {
+
+SimReplay Run(const Simulation& simulation, const EstimatorOptions& options,
+              const std::vector<EstimatorCamera>& cameras,
+              const std::vector<ImuSample>& imu,
+              const std::vector<FeatureFrame>& frames) {
   Estimator estimator(options, VisualFactorOptions(),
                       simulation.options.imu.noise, PreintegrationOptions(),
-                      Prepare(simulation).cameras);
+                      cameras);
   SimReplay r;
   r.outputs = RunSequence(&estimator, imu, frames);
   r.summary = estimator.summary();
+  r.time_offset_s = estimator.time_offset_s();
+  r.T_b_c0 = estimator.T_b_c(0);
 
   Trajectory estimate, truth;
   for (const EstimatorOutput& o : r.outputs) {
@@ -84,6 +111,8 @@ SimReplay Replay(const Simulation& simulation, const EstimatorOptions& options,
   r.final_b_g_error = (last.b_g - gt->b_g).norm();
   return r;
 }
+
+}  // namespace
 
 }  // namespace testing
 }  // namespace vio

@@ -20,6 +20,8 @@ struct SimReplay {
   double rpe_rmse_m = -1.0;      // over 1 m of travel [m]
   double final_b_a_error = 0.0;  // |b_a - truth| at the last frame [m/s^2]
   double final_b_g_error = 0.0;  // [rad/s]
+  double time_offset_s = 0.0;    // the estimator's t_d at the end [s]
+  Eigen::Isometry3d T_b_c0 = Eigen::Isometry3d::Identity();  // at the end
 };
 
 // A short simulation with a still start: `seconds` long, mono or stereo.
@@ -40,6 +42,12 @@ PreparedSimulation Prepare(const Simulation& simulation);
 SimReplay Replay(const Simulation& simulation, const EstimatorOptions& options,
                  const std::vector<ImuSample>& imu,
                  const std::vector<FeatureFrame>& frames);
+
+// Replay with the estimator given these cameras instead of the simulation's
+// (e.g. a perturbed extrinsic to be estimated).
+SimReplay ReplayWithCameras(const Simulation& simulation,
+                            const EstimatorOptions& options,
+                            const std::vector<EstimatorCamera>& cameras);
 
 // Replay of the simulation as it is.
 SimReplay ReplaySimulation(const Simulation& simulation,

@@ -1,0 +1,103 @@
+// End to end: the estimator's online calibration (time offset t_d and the
+// camera extrinsic T_b_c) converges to the simulator's truth on a short,
+// well-excited sequence generated here.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "estimator/estimator.h"
+#include "geometry/so3.h"
+#include "test/testing/sim_replay.h"
+
+namespace vio {
+namespace {
+
+using testing::SimReplay;
+
+// config/sim_aggressive.yaml's motion (up to ~2.9 m/s, ~1.8 rad/s) and track
+// drops, `seconds` long, with the given camera-IMU offset [s].
+SimulatorOptions AggressiveSimulation(double seconds, double t_d) {
+  SimulatorOptions o = testing::ShortSimulation(seconds, false);
+  o.motion.still_duration_s = 1.0;
+  o.motion.blend_duration_s = 1.5;
+  o.motion.lap_period_s = 7.0;
+  o.motion.height_amplitude_m = 0.6;
+  o.motion.roll_amplitude_rad = 0.35;
+  o.motion.pitch_amplitude_rad = 0.35;
+  o.motion.yaw_amplitude_rad = 0.6;
+  o.camera.track_drop_probability = 0.06;
+  o.camera.time_offset_s = t_d;
+  return o;
+}
+
+double RotationDeg(const Eigen::Matrix3d& R) {
+  return Log(R).norm() * 180.0 / M_PI;
+}
+
+// With t_d estimated from 0, the true +5 ms is found within 1 ms under the
+// simulator's default noise (1 px), and the trajectory is as good as with t_d
+// held at the truth. (With the tracker's image velocity the estimate hits
+// the 20 ms bound here; with the lagged one the 40 s preset gave -5.6 ms.)
+// Measured: 4.97 ms, ATE 0.0274 m against 0.0289 m at the truth; -5 ms and
+// +10 ms gave -4.86 ms and 9.96 ms.
+TEST(EstimatorCalibration, TimeOffsetConvergesToTheTruthUnderNoise) {
+  const double truth = 0.005;  // [s]
+  const Simulation sim = Simulate(AggressiveSimulation(12.0, truth));
+  EstimatorOptions estimated = testing::OptionsFor(sim.options);
+  estimated.estimate_time_offset = true;
+  EstimatorOptions fixed = testing::OptionsFor(sim.options);
+  fixed.initial_time_offset_s = truth;
+  const SimReplay r = testing::ReplaySimulation(sim, estimated);
+  const SimReplay at_truth = testing::ReplaySimulation(sim, fixed);
+  std::printf(
+      "t_d truth %.4f s: estimated %.5f s, ATE %.4f m (t_d fixed at the "
+      "truth: %.4f m), resets %lld\n",
+      truth, r.time_offset_s, r.ate_rmse_m, at_truth.ate_rmse_m,
+      static_cast<long long>(r.summary.resets));
+  EXPECT_EQ(r.summary.resets, 0);
+  EXPECT_NEAR(r.time_offset_s, truth, 1e-3);
+  EXPECT_LT(r.ate_rmse_m, 1.1 * at_truth.ate_rmse_m);
+}
+
+// T_b_c started 4 deg and 3.9 cm off the truth comes back to it: rotation
+// to hundredths of a degree, translation (less observable) to millimetres.
+// Measured: 0.023 deg, 5.5 mm (1, 2 deg: 0.023, 0.029 deg, 5.6, 7.5 mm; from
+// the truth itself it ends 0.021 deg, 5.7 mm off). 3 deg once reset for too
+// few landmarks at the end of the still start (the wrong extrinsic rejects
+// sightings before the motion makes it observable) and then converged alike;
+// a reset keeps the extrinsic estimate, so at most one is allowed.
+TEST(EstimatorCalibration, ExtrinsicConvergesFromAPerturbedStart) {
+  const Simulation sim = Simulate(AggressiveSimulation(12.0, 0.0));
+  const std::vector<EstimatorCamera> truth = testing::Prepare(sim).cameras;
+  std::vector<EstimatorCamera> perturbed = truth;
+  const Eigen::Vector3d axis = Eigen::Vector3d(1.0, -2.0, 1.5).normalized();
+  perturbed[0].T_b_c.linear() =
+      truth[0].T_b_c.linear() * Exp(axis * (4.0 * M_PI / 180.0));
+  perturbed[0].T_b_c.translation() += Eigen::Vector3d(0.03, -0.02, 0.015);
+  EstimatorOptions options = testing::OptionsFor(sim.options);
+  options.estimate_extrinsics = true;
+  const SimReplay r = testing::ReplayWithCameras(sim, options, perturbed);
+  const Eigen::Isometry3d error = truth[0].T_b_c.inverse() * r.T_b_c0;
+  const Eigen::Isometry3d start = truth[0].T_b_c.inverse() * perturbed[0].T_b_c;
+  std::printf(
+      "T_b_c error: start %.2f deg %.4f m, end %.3f deg %.4f m; ATE %.4f m, "
+      "resets %lld\n",
+      RotationDeg(start.linear()), start.translation().norm(),
+      RotationDeg(error.linear()), error.translation().norm(), r.ate_rmse_m,
+      static_cast<long long>(r.summary.resets));
+  for (const ResetEvent& e : r.summary.reset_log) {
+    std::printf("reset at %.2f s: %d\n",
+                1e-9 * static_cast<double>(e.t_ns - sim.options.start_time_ns),
+                static_cast<int>(e.reason));
+  }
+  EXPECT_LE(r.summary.resets, 1);
+  EXPECT_EQ(r.summary.frames_processed + r.summary.frames_before_init,
+            r.summary.frames);
+  EXPECT_LT(RotationDeg(error.linear()), 0.1);
+  EXPECT_LT(error.translation().norm(), 0.01);
+}
+
+}  // namespace
+}  // namespace vio
