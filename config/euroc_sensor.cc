@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "config/imu_config.h"
 #include "config/yaml_reader.h"
 
 namespace vio {
@@ -81,13 +82,7 @@ EurocImuSensor ReadEurocImuYaml(const std::string& path) {
   if (!(std::isfinite(imu.rate_hz) && imu.rate_hz > 0.0)) {
     root.Fail("rate_hz must be > 0 (got " + std::to_string(imu.rate_hz) + ")");
   }
-  imu.noise.accelerometer_noise_density =
-      root.Get<double>("accelerometer_noise_density");
-  imu.noise.gyroscope_noise_density =
-      root.Get<double>("gyroscope_noise_density");
-  imu.noise.accelerometer_random_walk =
-      root.Get<double>("accelerometer_random_walk");
-  imu.noise.gyroscope_random_walk = root.Get<double>("gyroscope_random_walk");
+  imu.noise = ReadImuNoise(root);
   ValidateAt(root, imu.noise);
   return imu;
 }

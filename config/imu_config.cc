@@ -34,16 +34,22 @@ bool ImuConfig::Validate(std::string* message) const {
   return true;
 }
 
+ImuNoise ReadImuNoise(const YamlNode& node) {
+  ImuNoise noise;
+  noise.accelerometer_noise_density =
+      node.Get<double>("accelerometer_noise_density");
+  noise.gyroscope_noise_density = node.Get<double>("gyroscope_noise_density");
+  noise.accelerometer_random_walk =
+      node.Get<double>("accelerometer_random_walk");
+  noise.gyroscope_random_walk = node.Get<double>("gyroscope_random_walk");
+  return noise;
+}
+
 ImuConfig LoadImuConfig(const YamlNode& root) {
   const YamlNode imu = root.Child("imu");
   ImuConfig c;
   c.rate_hz = imu.Get<double>("rate_hz");
-  c.noise.accelerometer_noise_density =
-      imu.Get<double>("accelerometer_noise_density");
-  c.noise.gyroscope_noise_density = imu.Get<double>("gyroscope_noise_density");
-  c.noise.accelerometer_random_walk =
-      imu.Get<double>("accelerometer_random_walk");
-  c.noise.gyroscope_random_walk = imu.Get<double>("gyroscope_random_walk");
+  c.noise = ReadImuNoise(imu);
   c.gravity_magnitude = imu.Get<double>("gravity_magnitude");
   c.preintegration.max_sample_gap = imu.Get<double>("max_sample_gap");
   c.preintegration.repropagate_acc_bias_change =

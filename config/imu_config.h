@@ -42,6 +42,13 @@ struct ImuConfig {
 // Reads and validates root's `imu` mapping; throws ConfigError.
 ImuConfig LoadImuConfig(const YamlNode& root);
 
+// Reads the four Kalibr noise keys (accelerometer_noise_density,
+// gyroscope_noise_density, accelerometer_random_walk, gyroscope_random_walk)
+// of `node`, as the `imu:` block, EuRoC's imu0/sensor.yaml and the simulator
+// presets hold them. Throws ConfigError for a missing or non-numeric key; the
+// caller validates (ValidateAt), so that its message names its own block.
+ImuNoise ReadImuNoise(const YamlNode& node);
+
 }  // namespace vio
 
 #endif  // VIO_CONFIG_IMU_CONFIG_H_

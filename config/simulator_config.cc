@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include "config/imu_config.h"
 #include "config/yaml_reader.h"
 
 namespace vio {
@@ -31,12 +32,7 @@ void ReadMotion(const YamlNode& m, SimMotionOptions* o) {
 void ReadImu(const YamlNode& i, SimImuOptions* o) {
   o->rate_hz = i.Get<double>("rate_hz");
   o->add_noise = i.Get<bool>("add_noise");
-  o->noise.accelerometer_noise_density =
-      i.Get<double>("accelerometer_noise_density");
-  o->noise.gyroscope_noise_density = i.Get<double>("gyroscope_noise_density");
-  o->noise.accelerometer_random_walk =
-      i.Get<double>("accelerometer_random_walk");
-  o->noise.gyroscope_random_walk = i.Get<double>("gyroscope_random_walk");
+  o->noise = ReadImuNoise(i);
   o->initial_accelerometer_bias = Vector3(i, "initial_accelerometer_bias");
   o->initial_gyroscope_bias = Vector3(i, "initial_gyroscope_bias");
   ValidateAt(i, o->noise);
