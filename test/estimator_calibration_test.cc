@@ -109,7 +109,7 @@ TEST(EstimatorCalibration, ExtrinsicConvergesFromAPerturbedStart) {
 // 0.015 m with T_b_c fixed). With the calibration prior (1 cm, 0.02 rad):
 // wander at most 1.9 cm (3.0 deg at one step), ATE 0.0275 m.
 TEST(EstimatorCalibration,
-     ExtrinsicStartedAtTheTruthStaysNearItAndTheTrajectory) {
+     ExtrinsicStartedAtTheTruthNeitherWandersNorCostsMuchAccuracy) {
   const Simulation sim = Simulate(AggressiveSimulation(12.0, 0.0));
   const testing::PreparedSimulation prepared = testing::Prepare(sim);
   const Eigen::Isometry3d truth = prepared.cameras[0].T_b_c;
