@@ -61,6 +61,10 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
   o->state_prior.velocity_moving = p.Get<double>("velocity_moving");
   o->state_prior.accel_bias = p.Get<double>("accel_bias");
   o->state_prior.gyro_bias = p.Get<double>("gyro_bias");
+  o->state_prior.extrinsic_rotation_rad =
+      p.Get<double>("extrinsic_rotation_rad");
+  o->state_prior.extrinsic_translation_m =
+      p.Get<double>("extrinsic_translation_m");
   const YamlNode f = e.Child("failure");
   o->failure.min_tracked_landmarks = f.Get<int>("min_tracked_landmarks");
   o->failure.max_accel_bias = f.Get<double>("max_accel_bias");

@@ -201,6 +201,19 @@ void Estimator::SetPriorOnOldest(double velocity_sigma) {
   prior_ = MakeStatePrior(f.pose.data(), f.speed_bias.data(),
                           options_.state_prior, velocity_sigma);
   prior_blocks_ = {f.pose.data(), f.speed_bias.data()};
+  SetExtrinsicPrior();
+}
+
+void Estimator::SetExtrinsicPrior() {
+  extrinsic_prior_.reset();
+  extrinsic_prior_blocks_.clear();
+  if (!options_.estimate_extrinsics) return;
+  std::vector<const double*> values;
+  for (int c = 0; c < window_.num_cameras; ++c) {
+    extrinsic_prior_blocks_.push_back(window_.extrinsics[c].data());
+    values.push_back(window_.extrinsics[c].data());
+  }
+  extrinsic_prior_ = MakeExtrinsicPrior(values, options_.state_prior);
 }
 
 void Estimator::TrimImu() {
@@ -228,6 +241,8 @@ void Estimator::Reset(int64_t t_ns, Failure reason) {
   summary_.reset_log.push_back({t_ns, reason});
   prior_.reset();
   prior_blocks_.clear();
+  extrinsic_prior_.reset();
+  extrinsic_prior_blocks_.clear();
 }
 
 bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
@@ -289,6 +304,9 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
 
   WindowProblem problem(&window_, &features_, ProblemSettings());
   if (prior_) problem.AddPrior(prior_.get(), prior_blocks_);
+  if (extrinsic_prior_) {
+    problem.AddPrior(extrinsic_prior_.get(), extrinsic_prior_blocks_);
+  }
   const bool imu_ok = problem.AddImuFactors();
   const int landmarks = problem.AddVisualFactors();
   Solve(&problem);
@@ -393,6 +411,9 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
   if (result.ok()) {
     prior_ = result.MakePrior();
     prior_blocks_ = result.kept_parameter_blocks;
+    // The extrinsic prior was one of the folded factors: now in prior_.
+    extrinsic_prior_.reset();
+    extrinsic_prior_blocks_.clear();
   } else {
     // No usable prior: a fresh one on the frame that becomes the oldest.
     ++summary_.marginalization_failures;
@@ -401,6 +422,7 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
                             options_.state_prior,
                             options_.state_prior.velocity_moving);
     prior_blocks_ = {next.pose.data(), next.speed_bias.data()};
+    SetExtrinsicPrior();
   }
   summary_.marginalization_time_s.push_back(
       Seconds(std::chrono::steady_clock::now() - start));

@@ -148,6 +148,8 @@ class Estimator {
   void UpdateImuLinearization();
   WindowProblemSettings ProblemSettings() const;
   void SetPriorOnOldest(double velocity_sigma);
+  // A fresh extrinsic prior at the current T_b_c (null when not estimated).
+  void SetExtrinsicPrior();
   void Reset(int64_t t_ns, Failure reason);
   void TrimImu();
   CameraPoseFn PoseFn() const;
@@ -164,6 +166,10 @@ class Estimator {
   Window window_;
   std::unique_ptr<MarginalizationPrior> prior_;
   std::vector<double*> prior_blocks_;
+  // With estimate_extrinsics: the calibration's prior on T_b_c, until the
+  // first marginalisation folds it into prior_ (then null).
+  std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
+  std::vector<double*> extrinsic_prior_blocks_;
   std::vector<ImuSample> imu_;
   bool initialized_ = false;
   int64_t next_frame_id_ = 0;

@@ -75,6 +75,10 @@ bool EstimatorOptions::Validate(std::string* message) const {
   c.Positive("state_prior.velocity_moving", state_prior.velocity_moving);
   c.Positive("state_prior.accel_bias", state_prior.accel_bias);
   c.Positive("state_prior.gyro_bias", state_prior.gyro_bias);
+  c.Positive("state_prior.extrinsic_rotation_rad",
+             state_prior.extrinsic_rotation_rad);
+  c.Positive("state_prior.extrinsic_translation_m",
+             state_prior.extrinsic_translation_m);
   c.NonNegative("failure.min_tracked_landmarks", failure.min_tracked_landmarks);
   c.Positive("failure.max_accel_bias", failure.max_accel_bias);
   c.Positive("failure.max_gyro_bias", failure.max_gyro_bias);

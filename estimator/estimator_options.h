@@ -70,6 +70,11 @@ struct StatePriorOptions {
   double velocity_moving = 0.3;  // after a reset or failure [m/s]
   double accel_bias = 0.2;       // [m/s^2]
   double gyro_bias = 0.005;      // [rad/s]
+  // The camera extrinsic's calibration, when it is estimated: without a
+  // prior its translation is unobservable until the body rotates, and it
+  // wanders during the still start (see README, "Online calibration").
+  double extrinsic_rotation_rad = 0.02;   // about the camera axes [rad]
+  double extrinsic_translation_m = 0.01;  // [m]
 };
 
 // When the estimator gives up and starts again.

@@ -4,6 +4,8 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "factors/pose_manifold.h"
+
 namespace vio {
 
 std::unique_ptr<MarginalizationPrior> MakeStatePrior(
@@ -30,6 +32,25 @@ std::unique_ptr<MarginalizationPrior> MakeStatePrior(
   blocks[1].x0.assign(speed_bias, speed_bias + 9);
   return std::make_unique<MarginalizationPrior>(blocks, Eigen::MatrixXd(J),
                                                 Eigen::VectorXd::Zero(15));
+}
+
+std::unique_ptr<MarginalizationPrior> MakeExtrinsicPrior(
+    const std::vector<const double*>& extrinsics,
+    const StatePriorOptions& sigmas) {
+  const int n = 6 * static_cast<int>(extrinsics.size());
+  Eigen::VectorXd inverse_sigma(n);
+  std::vector<PriorBlock> blocks(extrinsics.size());
+  for (size_t c = 0; c < extrinsics.size(); ++c) {
+    inverse_sigma.segment<3>(6 * c + kPoseTranslation)
+        .setConstant(1.0 / sigmas.extrinsic_translation_m);
+    inverse_sigma.segment<3>(6 * c + kPoseRotation)
+        .setConstant(1.0 / sigmas.extrinsic_rotation_rad);
+    blocks[c].kind = PriorBlockKind::kPose;
+    blocks[c].x0.assign(extrinsics[c], extrinsics[c] + 7);
+  }
+  return std::make_unique<MarginalizationPrior>(
+      blocks, Eigen::MatrixXd(inverse_sigma.asDiagonal()),
+      Eigen::VectorXd::Zero(n));
 }
 
 }  // namespace vio

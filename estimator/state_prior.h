@@ -12,6 +12,7 @@
 // and J_rot = L^T with Lambda_rot = L L^T, so that J^T J = Lambda.
 
 #include <memory>
+#include <vector>
 
 #include "estimator/estimator_options.h"
 #include "factors/marginalization_prior.h"
@@ -23,6 +24,14 @@ namespace vio {
 std::unique_ptr<MarginalizationPrior> MakeStatePrior(
     const double* pose, const double* speed_bias,
     const StatePriorOptions& sigmas, double velocity_sigma);
+
+// A Gaussian prior on camera extrinsics T_b_c (7 values each, [t, q]), every
+// one at its current value: the tangent [dt, dtheta] of each gets
+// diag(sigma_t^2 I, sigma_rot^2 I). Its blocks are the extrinsics in order;
+// `extrinsics` must not be empty and every value finite.
+std::unique_ptr<MarginalizationPrior> MakeExtrinsicPrior(
+    const std::vector<const double*>& extrinsics,
+    const StatePriorOptions& sigmas);
 
 }  // namespace vio
 

@@ -40,5 +40,34 @@ TEST(StatePrior, InformationMatchesTheSigmasAboutWorldAxes) {
   EXPECT_NEAR(r.norm(), 0.0, 1e-12);
 }
 
+// One camera's extrinsic prior: information 1 / sigma^2 on [dt, dtheta], zero
+// residual at the calibration, and a translation error of one sigma costs
+// exactly one unit of residual.
+TEST(StatePrior, ExtrinsicPriorWeighsTheCalibrationBySigma) {
+  const Eigen::Quaterniond q_b_c =
+      ExpQuaternion(Eigen::Vector3d(-1.2, 0.1, 1.5));
+  double T_b_c[7] = {0.05,      -0.02,     0.01,     q_b_c.x(),
+                     q_b_c.y(), q_b_c.z(), q_b_c.w()};
+  StatePriorOptions sigmas;
+  const auto prior = MakeExtrinsicPrior({T_b_c}, sigmas);
+  const Eigen::MatrixXd info =
+      prior->jacobian().transpose() * prior->jacobian();
+  ASSERT_EQ(info.rows(), 6);
+  const double t_info =
+      1.0 / (sigmas.extrinsic_translation_m * sigmas.extrinsic_translation_m);
+  const double r_info =
+      1.0 / (sigmas.extrinsic_rotation_rad * sigmas.extrinsic_rotation_rad);
+  EXPECT_NEAR(info(kPoseTranslation + 1, kPoseTranslation + 1), t_info, 1e-6);
+  EXPECT_NEAR(info(kPoseRotation + 2, kPoseRotation + 2), r_info, 1e-6);
+  EXPECT_NEAR(info(kPoseTranslation, kPoseRotation), 0.0, 1e-12);
+  const double* params[1] = {T_b_c};
+  Eigen::VectorXd r(6);
+  ASSERT_TRUE(prior->Evaluate(params, r.data(), nullptr));
+  EXPECT_NEAR(r.norm(), 0.0, 1e-12);
+  T_b_c[0] += sigmas.extrinsic_translation_m;
+  ASSERT_TRUE(prior->Evaluate(params, r.data(), nullptr));
+  EXPECT_NEAR(r.norm(), 1.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace vio
