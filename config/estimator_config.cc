@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <sstream>
+#include <string>
 
 namespace vio {
 namespace {
@@ -106,7 +107,10 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << "  solver: " << ceres::LinearSolverTypeToString(o.solver.linear_solver)
       << ", " << ceres::TrustRegionStrategyTypeToString(o.solver.trust_region)
       << ", <= " << o.solver.max_iterations
-      << " iterations, <= " << o.solver.max_time_s << " s, "
+      << " iterations, "
+      << (o.solver.max_time_s > 0.0
+              ? "<= " + std::to_string(o.solver.max_time_s) + " s (real time), "
+              : std::string("no time limit, "))
       << o.solver.num_threads << " thread(s)\n";
   return out.str();
 }

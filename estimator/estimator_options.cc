@@ -85,7 +85,7 @@ bool EstimatorOptions::Validate(std::string* message) const {
   c.Positive("failure.max_position_jump_m", failure.max_position_jump_m);
   c.Positive("failure.max_rotation_jump_deg", failure.max_rotation_jump_deg);
   c.AtLeast("solver.max_iterations", solver.max_iterations, 1);
-  c.Positive("solver.max_time_s", solver.max_time_s);
+  c.NonNegative("solver.max_time_s", solver.max_time_s);
   c.AtLeast("solver.num_threads", solver.num_threads, 1);
   return c.Done(message);
 }

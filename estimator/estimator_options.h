@@ -90,8 +90,12 @@ struct FailureOptions {
 struct SolverOptions {
   ceres::LinearSolverType linear_solver = ceres::DENSE_SCHUR;
   ceres::TrustRegionStrategyType trust_region = ceres::DOGLEG;
-  int max_iterations = 4;    // [-]
-  double max_time_s = 0.04;  // per step [s]
+  int max_iterations = 4;  // [-]
+  // Wall-clock budget per step [s]; 0: none, the iteration limit alone ends
+  // a step. A budget makes the trajectory depend on the machine's load (a
+  // busy machine cuts steps short), so offline replays leave it at 0 and
+  // only a real-time system that must keep up should set one.
+  double max_time_s = 0.0;
   // 1 makes every run bit-for-bit repeatable (Ceres sums Jacobian blocks in a
   // thread-dependent order with more threads).
   int num_threads = 1;

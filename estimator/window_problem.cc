@@ -190,7 +190,10 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {
   o.linear_solver_type = options.linear_solver;
   o.trust_region_strategy_type = options.trust_region;
   o.max_num_iterations = options.max_iterations;
-  o.max_solver_time_in_seconds = options.max_time_s;
+  // Without a budget Ceres' own default (1e9 s) applies: iterations only.
+  if (options.max_time_s > 0.0) {
+    o.max_solver_time_in_seconds = options.max_time_s;
+  }
   o.num_threads = options.num_threads;
   o.minimizer_progress_to_stdout = false;
   o.logging_type = ceres::SILENT;

@@ -15,6 +15,9 @@ TEST(EstimatorOptions, DefaultsAreValidAndMatchTheDesign) {
   EXPECT_EQ(o.window_size, 10);
   EXPECT_EQ(o.solver.num_threads, 1);
   EXPECT_DOUBLE_EQ(o.gravity_magnitude, 9.81);
+  // Offline by default: no wall-clock budget, so the load cannot change the
+  // trajectory.
+  EXPECT_EQ(o.solver.max_time_s, 0.0);
 }
 
 TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
@@ -35,6 +38,8 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
              std::numeric_limits<double>::quiet_NaN();
        },
        "landmarks.outlier_threshold_px must be > 0"},
+      {[](EstimatorOptions* o) { o->solver.max_time_s = -0.01; },
+       "solver.max_time_s must be >= 0"},
       {[](EstimatorOptions* o) { o->solver.num_threads = 0; },
        "solver.num_threads must be >= 1"},
       {[](EstimatorOptions* o) { o->failure.max_gyro_bias = 0.0; },
