@@ -106,8 +106,7 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << " px, at most " << o.landmarks.max_landmarks << "\n"
       << "  solver: " << ceres::LinearSolverTypeToString(o.solver.linear_solver)
       << ", " << ceres::TrustRegionStrategyTypeToString(o.solver.trust_region)
-      << ", <= " << o.solver.max_iterations
-      << " iterations, "
+      << ", <= " << o.solver.max_iterations << " iterations, "
       << (o.solver.max_time_s > 0.0
               ? "<= " + std::to_string(o.solver.max_time_s) + " s (real time), "
               : std::string("no time limit, "))
