@@ -110,8 +110,10 @@ FilteredPose PoseFilter::Output(const Eigen::VectorXd& x, int64_t t_ns,
 }
 
 double YawOf(const Eigen::Quaterniond& q_w_b) {
-  const Eigen::Matrix3d R = q_w_b.normalized().toRotationMatrix();
-  return std::atan2(R(1, 0), R(0, 0));
+  // Left-multiplying by Rz(d) = (cos d/2, 0, 0, sin d/2) turns the pair
+  // (q.w, q.z) by d/2 and mixes q.x with q.y: the twist angle grows by d.
+  const Eigen::Quaterniond q = q_w_b.normalized();
+  return WrapToPi(2.0 * std::atan2(q.z(), q.w()));
 }
 
 Eigen::Quaterniond WithYaw(const Eigen::Quaterniond& q_w_b, double yaw_rad) {

@@ -9,7 +9,8 @@
 // Measurement (4): x, y, z [m] and yaw [rad] of an estimated pose (vio_replay's
 // output, or any trajectory). The notes' planar (X, Z, theta) is the ground-
 // plane part of this with their Z as our y. Roll and pitch are not filtered:
-// a controller takes them from the estimate as they are.
+// a controller takes them from the estimate as they are (YawOf below says
+// what yaw and tilt are for any IMU mounting).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -78,12 +79,17 @@ class PoseFilter {
   Eigen::MatrixXd sigma_;
 };
 
-// Yaw of a rotation [rad]: the first angle of its Z-Y-X (yaw, pitch, roll)
-// decomposition, atan2(R10, R00).
+// Heading of a body [rad], in (-pi, pi]: the angle of the twist about the
+// world z axis in the swing-twist split q_w_b = Rz(yaw) * q_swing, where
+// q_swing turns about a horizontal axis. It is 2 atan2(q.z, q.w). Unlike the
+// Z-Y-X (yaw, pitch, roll) yaw, which is singular when the body's x axis is
+// vertical (EuRoC's IMU is mounted x up), it is defined for every attitude
+// but a half turn about a horizontal axis (q.z = q.w = 0; then 0). For a
+// level body it is the Z-Y-X yaw. YawOf(Rz(d) * q) = YawOf(q) + d.
 double YawOf(const Eigen::Quaterniond& q_w_b);
 
-// q_w_b with its yaw replaced and its roll and pitch (Z-Y-X) kept:
-// Rz(yaw) * Rz(-YawOf(q)) * q.
+// q_w_b with its heading replaced and its tilt (q_swing: roll and pitch)
+// kept: Rz(yaw - YawOf(q)) * q.
 Eigen::Quaterniond WithYaw(const Eigen::Quaterniond& q_w_b, double yaw_rad);
 
 }  // namespace vio
