@@ -222,11 +222,14 @@ TEST(AStarNotesDefects, TheSearchStopsWhenTheGoalLeavesTheOpenList) {
                      SearchMode::kDijkstra});
 }
 
-// "if count == 0: can't find path": the start's region has a dead end
-// expanded before the way out.
+// "if count == 0: can't find path": the cell left of the start is a dead end
+// nearer the goal (f = 1 + 2) than the way out (f = 1 + 2 sqrt(2)), so it
+// is expanded first, whatever the tie rule, and has no new neighbour.
 TEST(AStarNotesDefects, NoPathOnlyWhenTheOpenListIsEmpty) {
-  ExpectDefectShown({{"G@.",  //
-                      "..S"},
+  ExpectDefectShown({{"G....",  //
+                      "@@@@.",  //
+                      ".S...",  //
+                      "@@@@@"},
                      {false, false, true, false},
                      SearchMode::kAStar});
 }
