@@ -134,7 +134,8 @@ OccupancyGrid BuildOccupancyGrid(
   }
   g.occupied.assign(count.size(), 0);
   // The disc of cells whose centres lie within radius_m of a cell's centre.
-  const int r = static_cast<int>(std::floor(o.radius_m / o.cell_m));
+  // (+1e-9: 0.3 / 0.1 is 2.9999999999999996 in doubles.)
+  const int r = static_cast<int>(std::floor(o.radius_m / o.cell_m + 1e-9));
   std::vector<Cell> disc;
   for (int dy = -r; dy <= r; ++dy) {
     for (int dx = -r; dx <= r; ++dx) {
