@@ -34,6 +34,17 @@ bool Map(const Landmark& l, const CameraPoseFn& T_w_c, MappedLandmark* out) {
   return true;
 }
 
+// Keeps the better triangulated of the stored and the new position: once a
+// landmark's first sightings have left the window, its later records rest
+// on fewer of them.
+void Keep(int64_t id, const MappedLandmark& m,
+          std::map<int64_t, MappedLandmark>* map) {
+  const auto it = map->find(id);
+  if (it == map->end() || m.parallax_deg >= it->second.parallax_deg) {
+    (*map)[id] = m;
+  }
+}
+
 }  // namespace
 
 void LandmarkMap::RecordAnchoredIn(const FeatureManager& features,
@@ -42,7 +53,7 @@ void LandmarkMap::RecordAnchoredIn(const FeatureManager& features,
   for (const auto& [id, landmark] : features.landmarks()) {
     if (!Usable(landmark) || landmark.anchor().frame_id != frame_id) continue;
     MappedLandmark m;
-    if (Map(landmark, T_w_c, &m)) landmarks_[id] = m;
+    if (Map(landmark, T_w_c, &m)) Keep(id, m, &landmarks_);
   }
 }
 
@@ -51,7 +62,7 @@ std::map<int64_t, MappedLandmark> LandmarkMap::WithWindow(
   std::map<int64_t, MappedLandmark> all = landmarks_;
   for (const auto& [id, landmark] : features.landmarks()) {
     MappedLandmark m;
-    if (Usable(landmark) && Map(landmark, T_w_c, &m)) all[id] = m;
+    if (Usable(landmark) && Map(landmark, T_w_c, &m)) Keep(id, m, &all);
   }
   return all;
 }

@@ -5,9 +5,11 @@
 // the estimator (vio_replay's landmarks.csv, the planner's occupancy grid).
 // The window forgets a landmark once its last sighting leaves; this keeps
 // its position. A landmark is recorded when its anchor frame is marginalised
-// (its depth then carries every sighting of the full window) and recorded
-// again, overwriting, each time a later anchor leaves; the landmarks still in
-// the window are added at query time as they are then. Read-only for the
+// (its depth then carries every sighting of the full window) and again each
+// time a later anchor leaves, and the landmarks still in the window are
+// added at query time as they are then; of these records the one with the
+// widest triangulation angle is kept (the later ones rest on fewer
+// sightings, their first ones having left the window). Read-only for the
 // estimation: nothing here feeds back into the window.
 //
 // Each carries its triangulation angle: the largest angle at the point

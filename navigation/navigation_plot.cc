@@ -207,7 +207,7 @@ void WritePlanPlot(const std::string& path, const std::string& title,
   const int scale = std::max(1, 900 / std::max(gw, gh));
   const int left = 90, top = 60;
   const cv::Rect area(left, top, gw * scale, gh * scale);
-  const int legend_w = 230;
+  const int legend_w = 290;
   cv::Mat image(top + area.height + 70,
                 std::max(left + area.width + 30 + legend_w, 600), CV_8UC3,
                 kWhite);
