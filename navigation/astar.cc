@@ -102,16 +102,17 @@ bool GridPlanner::Search(int32_t start, int32_t goal, int64_t* expansions) {
   s.g = 0.0;
   s.parent = -1;
   s.seen = generation_;
-  open_.push_back({h(start % stride_, start / stride_), 0.0, start});
+  open_.push_back({h(start % stride_, start / stride_), 0.0f, start});
 
   while (!open_.empty()) {
     std::pop_heap(open_.begin(), open_.end(), LaterOut());
     const OpenEntry top = open_.back();
     open_.pop_back();
     Node& current = nodes_[top.node];
-    // Lazy deletion: an entry left behind by a decrease-key, or a node
-    // already expanded, is skipped.
-    if (current.closed == generation_ || top.g > current.g) continue;
+    // Lazy deletion: an entry left behind by a decrease-key is skipped. Its
+    // node was pushed again with a lower g, so (h being the same) a lower f,
+    // and has been expanded by the time the old entry surfaces.
+    if (current.closed == generation_) continue;
     current.closed = generation_;
     ++*expansions;
     if (top.node == goal) return true;  // taken out of open: g is final
@@ -130,7 +131,7 @@ bool GridPlanner::Search(int32_t start, int32_t goal, int64_t* expansions) {
       next.g = ng;
       next.parent = n;
       next.seen = generation_;
-      open_.push_back({ng + h(mx, my), ng, m});
+      open_.push_back({ng + h(mx, my), static_cast<float>(ng), m});
       std::push_heap(open_.begin(), open_.end(), LaterOut());
     };
     const bool north = passable_[n - stride_];

@@ -65,9 +65,10 @@ class GridPlanner {
     uint32_t seen = 0;    // == generation_: g and parent belong to this query
     uint32_t closed = 0;  // == generation_: expanded in this query
   };
+  // 16 bytes: f decides the order; g (as a float) only breaks ties.
   struct OpenEntry {
     double f;
-    double g;
+    float g;
     int32_t node;
   };
 
