@@ -68,7 +68,6 @@ TEST(LandmarkMap, MappedLandmarksLieOnTheSimulatedOnes) {
   const double wide = median_above(5.0);
   EXPECT_LT(wide, 0.15) << "median error at >= 5 deg " << wide << " m";
   EXPECT_LT(wide, 0.5 * all) << "median error of all " << all << " m";
-         by_angle.size(), all, median_above(3.0), wide);
 }
 
 }  // namespace
