@@ -11,6 +11,10 @@ namespace {
 
 constexpr double kSqrt2 = 1.41421356237309504880;
 
+// Two f closer than this [cells] are equal (sums of 1 and sqrt(2) rounded
+// in different orders differ in their last bits).
+constexpr double kSameF = 1e-9;
+
 // The open list's order: std::push_heap keeps the "largest" on top, so an
 // entry is "less" when it should come out later: a larger f, or an equal f
 // with a smaller g (ties go to the larger g).
@@ -87,6 +91,14 @@ PlanResult GridPlanner::Plan(Cell start, Cell goal, SearchMode mode) {
 
 // One query. Nodes are indices into the padded grid, whose border is
 // blocked, so a neighbour never needs a bounds check.
+//
+// The open list is the binary heap plus level_, a stack of the successors
+// whose f equals the f being expanded. With a consistent h no open node has
+// a smaller f, and such a successor's g exceeds that of every node in the
+// heap with the same f (the expanded one had the largest), so the heap
+// would return it next: it skips the heap's push and pop. Most expansions
+// on open ground are of this kind (f stays constant along a straight or
+// diagonal run toward the goal).
 template <bool kEightConnected, bool kHeuristic>
 bool GridPlanner::Search(int32_t start, int32_t goal, int64_t* expansions) {
   const int gx = goal % stride_;
@@ -98,16 +110,25 @@ bool GridPlanner::Search(int32_t start, int32_t goal, int64_t* expansions) {
     return kEightConnected ? Octile(dx, dy) : static_cast<double>(dx + dy);
   };
   open_.clear();
+  level_.clear();
   Node& s = nodes_[start];
   s.g = 0.0;
   s.parent = -1;
   s.seen = generation_;
   open_.push_back({h(start % stride_, start / stride_), 0.0f, start});
 
-  while (!open_.empty()) {
-    std::pop_heap(open_.begin(), open_.end(), LaterOut());
-    const OpenEntry top = open_.back();
-    open_.pop_back();
+  while (true) {
+    OpenEntry top;
+    if (!level_.empty()) {
+      top = level_.back();
+      level_.pop_back();
+    } else if (!open_.empty()) {
+      std::pop_heap(open_.begin(), open_.end(), LaterOut());
+      top = open_.back();
+      open_.pop_back();
+    } else {
+      break;
+    }
     Node& current = nodes_[top.node];
     // Lazy deletion: an entry left behind by a decrease-key is skipped. Its
     // node was pushed again with a lower g, so (h being the same) a lower f,
@@ -131,8 +152,13 @@ bool GridPlanner::Search(int32_t start, int32_t goal, int64_t* expansions) {
       next.g = ng;
       next.parent = n;
       next.seen = generation_;
-      open_.push_back({ng + h(mx, my), static_cast<float>(ng), m});
-      std::push_heap(open_.begin(), open_.end(), LaterOut());
+      const OpenEntry entry{ng + h(mx, my), static_cast<float>(ng), m};
+      if (entry.f <= top.f + kSameF) {
+        level_.push_back(entry);  // comes out next anyway: skip the heap
+      } else {
+        open_.push_back(entry);
+        std::push_heap(open_.begin(), open_.end(), LaterOut());
+      }
     };
     const bool north = passable_[n - stride_];
     const bool south = passable_[n + stride_];

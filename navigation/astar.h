@@ -85,7 +85,8 @@ class GridPlanner {
   Connectivity connectivity_;
   std::vector<uint8_t> passable_;  // padded
   std::vector<Node> nodes_;        // padded
-  std::vector<OpenEntry> open_;
+  std::vector<OpenEntry> open_;    // binary heap (LaterOut order)
+  std::vector<OpenEntry> level_;   // successors at the current f (astar.cc)
   uint32_t generation_ = 0;
 };
 
