@@ -19,7 +19,7 @@ namespace vio {
 namespace {
 
 TEST(LandmarkMap, MappedLandmarksLieOnTheSimulatedOnes) {
-  const Simulation sim = Simulate(testing::ShortSimulation(14.0, false));
+  const Simulation sim = Simulate(testing::ShortSimulation(10.0, false));
   const testing::PreparedSimulation prepared = testing::Prepare(sim);
   Estimator estimator(testing::OptionsFor(sim.options), VisualFactorOptions(),
                       sim.options.imu.noise, PreintegrationOptions(),
