@@ -63,8 +63,8 @@ void GridPlanner::CheckEndpoint(Cell c, const char* name) const {
 }
 
 void GridPlanner::NextGeneration() {
-  if (++generation_ == 0) {  // wrapped after 2^32 queries: clear the stamps
-    for (Node& n : nodes_) n.seen = n.closed = 0;
+  if (++generation_ == (1u << 31)) {  // after 2^31 queries: clear the stamps
+    for (Node& n : nodes_) n.stamp = 0;
     generation_ = 1;
   }
 }
@@ -111,10 +111,12 @@ bool GridPlanner::Search(int32_t start, int32_t goal, int64_t* expansions) {
   };
   open_.clear();
   level_.clear();
+  const uint32_t open = 2 * generation_;  // node stamps of this query
+  const uint32_t closed = open + 1;
   Node& s = nodes_[start];
   s.g = 0.0;
   s.parent = -1;
-  s.seen = generation_;
+  s.stamp = 2 * generation_;
   open_.push_back({h(start % stride_, start / stride_), 0.0f, start});
 
   while (true) {
@@ -133,8 +135,8 @@ bool GridPlanner::Search(int32_t start, int32_t goal, int64_t* expansions) {
     // Lazy deletion: an entry left behind by a decrease-key is skipped. Its
     // node was pushed again with a lower g, so (h being the same) a lower f,
     // and has been expanded by the time the old entry surfaces.
-    if (current.closed == generation_) continue;
-    current.closed = generation_;
+    if (current.stamp == closed) continue;
+    current.stamp = closed;
     ++*expansions;
     if (top.node == goal) return true;  // taken out of open: g is final
 
@@ -146,12 +148,12 @@ bool GridPlanner::Search(int32_t start, int32_t goal, int64_t* expansions) {
     // f and father and (re)pushes it.
     auto relax = [&](int32_t m, int mx, int my, double c) {
       Node& next = nodes_[m];
-      if (next.closed == generation_) return;
+      if (next.stamp == closed) return;
       const double ng = g + c;
-      if (next.seen == generation_ && ng >= next.g) return;
+      if (next.stamp == open && ng >= next.g) return;
       next.g = ng;
       next.parent = n;
-      next.seen = generation_;
+      next.stamp = open;
       const OpenEntry entry{ng + h(mx, my), static_cast<float>(ng), m};
       if (entry.f <= top.f + kSameF) {
         level_.push_back(entry);  // comes out next anyway: skip the heap

@@ -62,8 +62,9 @@ class GridPlanner {
   struct Node {
     double g = 0.0;
     int32_t parent = -1;
-    uint32_t seen = 0;    // == generation_: g and parent belong to this query
-    uint32_t closed = 0;  // == generation_: expanded in this query
+    // 2 * generation_: g and parent belong to this query (open);
+    // 2 * generation_ + 1: also expanded (closed). 16 bytes a node.
+    uint32_t stamp = 0;
   };
   // 16 bytes: f decides the order; g (as a float) only breaks ties.
   struct OpenEntry {
@@ -87,7 +88,7 @@ class GridPlanner {
   std::vector<Node> nodes_;        // padded
   std::vector<OpenEntry> open_;    // binary heap (LaterOut order)
   std::vector<OpenEntry> level_;   // successors at the current f (astar.cc)
-  uint32_t generation_ = 0;
+  uint32_t generation_ = 0;        // < 2^31: stamps are 2 * generation_ (+ 1)
 };
 
 }  // namespace vio
