@@ -4,7 +4,8 @@
 set -euo pipefail
 
 packages=(build-essential cmake libceres-dev libeigen3-dev libopencv-dev
-          libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev)
+          libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev
+          libboost-graph-dev)
 
 missing=()
 for p in "${packages[@]}"; do
