@@ -28,34 +28,51 @@ int BitWidth(uint64_t value) {
 }  // namespace
 
 // Integer costs. A path of a straight and b diagonal steps has the length
-// a + b sqrt(2) and the cost a S + b D, with S = 2^k and D = round(sqrt(2) S)
-// (|D - sqrt(2) S| <= 0.55, the rounding of the double sqrt(2) included). The
-// octile heuristic in the same units is consistent (it is the exact distance
-// on an empty grid with these costs) and so is every f below.
-//   Range: g <= D * cells (a shortest path visits a cell once), h <= D *
-// (width + height), so with k = 62 - BitWidth(cells + width + height) every
-// f is below 1.5 * 2^62 < 2^63; k is at most 48 (D from a double is then
-// exact to the nearest integer).
-//   Exactness: two paths compare as their lengths do when the cost error
-// |Δb| * 0.55 is below S |Δa + Δb sqrt(2)| >= S / (2.9 |Δb| + 1) (since
-// |2 Δb² - Δa²| >= 1), i.e. when S > 1.6 Δb² + 0.55 |Δb|. Δb is at most the
-// number of cells, so this holds for every grid of up to 2^20 cells (k >= 41
-// there; a 512 x 512 grid has k = 43 and needs k > 37). Equal lengths have
-// equal costs (equal a and b), so ties of f are exact, and the length
-// returned is a + b sqrt(2) counted on the path, not the sum of costs.
+// a + b sqrt(2) and the cost a S + b D, with S = 2^k and D = round(sqrt(2) S):
+// |D - sqrt(2) S| <= 0.53 (0.5 from the rounding, < 0.03 from the double
+// sqrt(2) scaled by 2^k <= 2^48). The search itself is exact in these
+// integers (no sums of doubles), and the octile heuristic in the same units
+// is consistent (it is the exact distance on an empty grid with these
+// costs), so the path found has the least cost a S + b D.
+//   Least cost is least length when the rounding cannot swap the order of
+// two paths. Let P be the path found and Q a shortest one, both simple (b <=
+// cells), Δa = a_P - a_Q, Δb = b_P - b_Q. Their costs differ by
+//   S (Δa + Δb sqrt(2)) + Δb (D - sqrt(2) S),
+// whose second term is at most 0.53 |Δb|. If Δb = 0 the costs compare as the
+// lengths. Otherwise Δa + Δb sqrt(2) is not 0 (sqrt(2) is irrational) and,
+// as |Δa² - 2 Δb²| >= 1, it is at least 1 / |Δa - Δb sqrt(2)| >= 1 / (2.9
+// |Δb| + 1) whenever it is below 1. So the costs order P and Q as their
+// lengths do when S > 0.53 |Δb| (2.9 |Δb| + 1), i.e. S > 1.6 Δb² + 0.6 |Δb|:
+// then cost(P) <= cost(Q) forces length(P) <= length(Q), and P is a shortest
+// path. Equal lengths have equal a and b, hence equal costs: ties of f are
+// exact too, and the length returned is a + b sqrt(2) counted on the path,
+// not the sum of costs.
+//   k = min(48, 62 - BitWidth(cells + width + height)) keeps every f (g <= D
+// cells, h <= D (width + height)) below 1.5 * 2^62 < 2^63, and meets the
+// bound above for every grid of up to 2^20 cells (k >= 41 there; 512 x 512
+// has k = 43 and needs k > 37). astar_test's
+// FixedPointCostsOrderPathsAsTheirLengths checks, for the Δb of those grids and
+// the Δa nearest -Δb sqrt(2) (the hardest pairs), that the costs compare as the
+// lengths.
 //   Larger grids keep this order unless two lengths differ by less than
-// |Δb| * 0.55 / S, about 1e-10 * |Δb| cells at 2^28 cells; summing doubles
-// (the planner before these integers) erred by more there.
+// 0.53 |Δb| / S, about 1e-10 |Δb| cells at 2^28 cells; summing doubles (the
+// planner before these integers) erred by more there.
+StepCosts FixedPointStepCosts(int width, int height) {
+  const uint64_t bound = static_cast<uint64_t>(width) * height +
+                         static_cast<uint64_t>(width) + height;
+  const int k = std::min(48, 62 - BitWidth(bound));
+  return {uint64_t{1} << k,
+          static_cast<uint64_t>(std::llround(std::ldexp(kSqrt2, k)))};
+}
+
 GridPlanner::GridPlanner(const Grid& grid, Connectivity connectivity)
     : width_(grid.width()),
       height_(grid.height()),
       stride_(grid.width() + 2),
       connectivity_(connectivity) {
-  const uint64_t bound = static_cast<uint64_t>(width_) * height_ +
-                         static_cast<uint64_t>(width_) + height_;
-  const int k = std::min(48, 62 - BitWidth(bound));
-  unit_ = uint64_t{1} << k;
-  diagonal_ = static_cast<uint64_t>(std::llround(std::ldexp(kSqrt2, k)));
+  const StepCosts costs = FixedPointStepCosts(width_, height_);
+  unit_ = costs.unit;
+  diagonal_ = costs.diagonal;
 
   passable_.assign(static_cast<size_t>(stride_) * (height_ + 2), 0);
   for (int y = 0; y < height_; ++y) {

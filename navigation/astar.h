@@ -42,6 +42,17 @@ struct PlanResult {
   int64_t expansions = 0;
 };
 
+// The integer step costs of the planner for a width x height grid: a
+// straight step costs unit = 2^k, a diagonal one diagonal = round(sqrt(2) 2^k),
+// k as large as the grid allows without overflow. astar.cc says why the
+// order of these costs is the order of the path lengths (so the path found is
+// a shortest one); astar_test checks it.
+struct StepCosts {
+  uint64_t unit;
+  uint64_t diagonal;
+};
+StepCosts FixedPointStepCosts(int width, int height);
+
 // One planner per grid: it keeps its buffers between queries, so a query
 // costs nothing for the cells it does not touch.
 class GridPlanner {
@@ -60,9 +71,7 @@ class GridPlanner {
   Connectivity connectivity() const { return connectivity_; }
 
  private:
-  // Costs and keys are integers: a straight step costs unit_ = 2^k and a
-  // diagonal one diagonal_ = round(sqrt(2) * 2^k), k as large as the grid
-  // allows without overflow (astar.cc says why this is exact).
+  // Costs and keys are integers: FixedPointStepCosts (unit_, diagonal_).
   // One 32-bit word per cell, so that the loop touches two arrays (12
   // bytes a cell, g_ apart: most neighbours looked at are closed, and only
   // their word is read):
