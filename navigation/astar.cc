@@ -41,12 +41,12 @@ int BitWidth(uint64_t value) {
 // whose second term is at most 0.53 |Δb|. If Δb = 0 the costs compare as the
 // lengths. Otherwise Δa + Δb sqrt(2) is not 0 (sqrt(2) is irrational) and,
 // as |Δa² - 2 Δb²| >= 1, it is at least 1 / |Δa - Δb sqrt(2)| >= 1 / (2.9
-// |Δb| + 1) whenever it is below 1. So the costs order P and Q as their
-// lengths do when S > 0.53 |Δb| (2.9 |Δb| + 1), i.e. S > 1.6 Δb² + 0.6 |Δb|:
-// then cost(P) <= cost(Q) forces length(P) <= length(Q), and P is a shortest
-// path. Equal lengths have equal a and b, hence equal costs: ties of f are
-// exact too, and the length returned is a + b sqrt(2) counted on the path,
-// not the sum of costs.
+// |Δb| + 1) when it is below 1 (when it is not, S > 0.53 |Δb| suffices). So the
+// costs order P and Q as their lengths do when S > 0.53 |Δb| (2.9 |Δb| + 1),
+// i.e. S > 1.6 Δb² + 0.6 |Δb|: then cost(P) <= cost(Q) forces length(P) <=
+// length(Q), and P is a shortest path. Equal lengths have equal a and b, hence
+// equal costs: ties of f are exact too, and the length returned is a + b
+// sqrt(2) counted on the path, not the sum of costs.
 //   k = min(48, 62 - BitWidth(cells + width + height)) keeps every f (g <= D
 // cells, h <= D (width + height)) below 1.5 * 2^62 < 2^63, and meets the
 // bound above for every grid of up to 2^20 cells (k >= 41 there; 512 x 512
