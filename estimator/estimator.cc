@@ -381,6 +381,8 @@ void Estimator::Slide(const WindowProblem& problem) {
   summary_.outlier_sightings_removed +=
       static_cast<int64_t>(outliers.sightings.size());
   if (marginalize) {
+    landmark_map_.RecordAnchoredIn(features_, window_.frames.front()->id,
+                                   PoseFn());
     features_.RemoveFrame(window_.frames.front()->id, PoseFn());
     window_.frames.pop_front();
     window_.frames.front()->imu.reset();

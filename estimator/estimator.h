@@ -26,6 +26,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@
 #include "estimator/estimator_options.h"
 #include "estimator/failure_detection.h"
 #include "estimator/feature_manager.h"
+#include "estimator/landmark_map.h"
 #include "estimator/static_initializer.h"
 #include "estimator/window.h"
 #include "estimator/window_problem.h"
@@ -129,6 +131,14 @@ class Estimator {
   double time_offset_s() const { return window_.t_d; }
   // The extrinsic of camera 0 or 1, as estimated (or held fixed).
   Eigen::Isometry3d T_b_c(int camera) const { return window_.T_b_c(camera); }
+  // The landmarks triangulated so far, by feature id, with world position [m]
+  // and triangulation angle (estimator/landmark_map.h: each as when its
+  // anchor frame was last marginalised, or as now when still in the window).
+  // Landmarks lost to a reset, or removed as outliers before their anchor left,
+  // are not in it. Read-only: it does not change the estimate.
+  std::map<int64_t, MappedLandmark> MappedLandmarks() const {
+    return landmark_map_.WithWindow(features_, PoseFn());
+  }
 
  private:
   bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
@@ -163,6 +173,7 @@ class Estimator {
 
   StaticInitializer static_init_;
   FeatureManager features_;
+  LandmarkMap landmark_map_;
   Window window_;
   std::unique_ptr<MarginalizationPrior> prior_;
   std::vector<double*> prior_blocks_;

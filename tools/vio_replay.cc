@@ -19,6 +19,7 @@
 #include "config/frontend_config.h"
 #include "config/imu_config.h"
 #include "config/visual_config.h"
+#include "dataset/landmarks_io.h"
 #include "dataset/sim_folder.h"
 #include "estimator/sequence_runner.h"
 #include "frontend/observation_builder.h"
@@ -38,7 +39,9 @@ constexpr char kUsage[] =
     "Replays SEQUENCE (a folder in the EuRoC ASL layout whose cameras carry\n"
     "features.csv, e.g. written by vio_sim, or images: data.csv + data/,\n"
     "tracked by the frontend) through the estimator. Writes\n"
-    "DIR/trajectory.tum and DIR/states.csv; with ground truth in the folder\n"
+    "DIR/trajectory.tum, DIR/states.csv and DIR/landmarks.csv (the mapped\n"
+    "landmarks: world x,y,z [m] and triangulation angle [deg]); with\n"
+    "ground truth in the folder\n"
     "also DIR/evaluation.png, and prints ATE and RPE (posyaw alignment).\n"
     "Without SEQUENCE it simulates the default preset (vio_sim's built-in\n"
     "defaults) into " VIO_REPLAY_CACHE
@@ -196,6 +199,19 @@ std::vector<EstimatorCamera> Cameras(const EurocSequence& seq, int used) {
   return cameras;
 }
 
+// DIR/landmarks.csv: the world positions of the landmarks the run mapped
+// and their triangulation angles (Estimator::MappedLandmarks), for vio_plan
+// --replay.
+void WriteLandmarks(const std::string& dir, const Estimator& estimator) {
+  std::vector<LandmarkRow> points;
+  for (const auto& [id, m] : estimator.MappedLandmarks()) {
+    points.push_back({m.p_w, m.parallax_deg});
+  }
+  const std::string path = (fs::path(dir) / "landmarks.csv").string();
+  WriteLandmarksCsv(path, points);
+  std::printf("wrote %s (%zu landmarks)\n", path.c_str(), points.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -243,6 +259,7 @@ int main(int argc, char** argv) {
     progress.Finish();
     fs::create_directories(args.out);
     const Trajectory estimate = WriteOutputs(args.out, outputs);
+    WriteLandmarks(args.out, estimator);
     PrintSummary(estimator.summary(), frames, wall_s);
     std::printf("  time offset t_d      %.6f s (%s)\n",
                 estimator.time_offset_s(),
