@@ -30,7 +30,11 @@ if [ ${#harnesses[@]} -eq 0 ]; then
   for dir in fuzz/corpus/*/; do harnesses+=("$(basename "$dir")"); done
 fi
 
-[ -f "$build/CMakeCache.txt" ] || bash scripts/sanitize.sh --configure
+if [ -f "$build/CMakeCache.txt" ]; then
+  cmake -S . -B "$build" > /dev/null  # picks up harnesses added since
+else
+  bash scripts/sanitize.sh --configure
+fi
 targets=()
 for h in "${harnesses[@]}"; do targets+=("${h}_fuzzer"); done
 cmake --build "$build" -j"$jobs" --target "${targets[@]}"
