@@ -72,6 +72,7 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
   o->failure.max_gyro_bias = f.Get<double>("max_gyro_bias");
   o->failure.max_position_jump_m = f.Get<double>("max_position_jump_m");
   o->failure.max_rotation_jump_deg = f.Get<double>("max_rotation_jump_deg");
+  o->failure.max_speed_m_s = f.Get<double>("max_speed_m_s");
   ReadSolver(e.Child("solver"), &o->solver);
 }
 
