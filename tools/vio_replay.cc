@@ -206,7 +206,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     Config config = LoadConfig(args.config);
-    config.estimator.gravity_magnitude = config.imu.gravity_magnitude;
+    ApplyImuConfig(config.imu, &config.estimator);
     const std::string folder = SequenceFolder(args);
     const EurocSequence seq = LoadEurocSequence(folder);
     const int used = config.estimator.use_stereo ? 2 : 1;
