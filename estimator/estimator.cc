@@ -99,7 +99,12 @@ void Estimator::AddImu(const ImuSample& sample) {
     ++summary_.imu_out_of_order;
     return;
   }
-  switch (imu_filter_.Add(sample, &imu_)) {
+  const ImuScreening screening = imu_filter_.Add(sample, &imu_);
+  if (screening != ImuScreening::kAccepted &&
+      summary_.imu_first_glitch_t_ns < 0) {
+    summary_.imu_first_glitch_t_ns = sample.t_ns;
+  }
+  switch (screening) {
     case ImuScreening::kDropped:
       ++summary_.imu_dropped;
       return;

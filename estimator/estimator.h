@@ -88,8 +88,9 @@ struct EstimatorSummary {
   int64_t imu_out_of_order = 0;  // stamp not after the last: skipped
   int64_t imu_replaced = 0;      // outside the measuring range: replaced
   int64_t imu_dropped = 0;       // outside it for too long to replace: dropped
-  int64_t imu_short_gaps = 0;    // missed samples, integrated across
-  std::vector<ImuGap> imu_gaps;  // longer than max_sample_gap, in time order
+  int64_t imu_first_glitch_t_ns = -1;  // the first of those [ns]; -1: none
+  int64_t imu_short_gaps = 0;          // missed samples, integrated across
+  std::vector<ImuGap> imu_gaps;     // longer than max_sample_gap, in time order
   int64_t frames_visual_only = 0;   // tracked on vision alone across a gap
   int64_t frames_out_of_order = 0;  // stamp not after the last: skipped
   int64_t frames_without_imu = 0;   // no IMU and no visual pose: skipped
@@ -160,6 +161,7 @@ class Estimator {
   // IMU gaps (estimator_gaps.cc).
   void NoteImuStep();
   ImuGap* GapBefore(int64_t t_ns);
+  ImuGap* GapFor(int64_t t_imu_ns);
   bool ImuHasGap(int64_t t0_ns, int64_t t1_ns) const;
   bool AppendVisualFrame(const FeatureFrame& frame, int64_t t_imu_ns,
                          EstimatorOutput* predicted);

@@ -46,6 +46,22 @@ ImuGap* Estimator::GapBefore(int64_t t_ns) {
   return nullptr;
 }
 
+ImuGap* Estimator::GapFor(int64_t t_imu_ns) {
+  // Silent since its last sample and still not back: an open gap, logged
+  // now (NoteImuStep closes it when a sample comes).
+  const int64_t max_gap_ns = SecondsToNs(preintegration_.max_sample_gap);
+  if (!imu_.empty() && t_imu_ns - imu_.back().t_ns > max_gap_ns) {
+    std::vector<ImuGap>& gaps = summary_.imu_gaps;
+    if (gaps.empty() || gaps.back().t_start_ns != imu_.back().t_ns) {
+      ImuGap gap;
+      gap.t_start_ns = imu_.back().t_ns;
+      gaps.push_back(gap);
+    }
+    return &gaps.back();
+  }
+  return GapBefore(t_imu_ns);
+}
+
 bool Estimator::ImuHasGap(int64_t t0_ns, int64_t t1_ns) const {
   return LongestImuHoleNs(imu_, t0_ns, t1_ns) >
          SecondsToNs(preintegration_.max_sample_gap);
@@ -137,7 +153,7 @@ bool Estimator::AppendVisualFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   *predicted = OutputOf(*f, frame.t_ns);
   PushFrame(std::move(f), frame);
   ++summary_.frames_visual_only;
-  if (ImuGap* gap = GapBefore(t_imu_ns)) ++gap->frames_visual;
+  if (ImuGap* gap = GapFor(t_imu_ns)) ++gap->frames_visual;
   return true;
 }
 
@@ -146,7 +162,7 @@ bool Estimator::RestartAfterGap(const FeatureFrame& frame, int64_t t_imu_ns,
   // Vision could not place the frame. While the IMU is still silent there is
   // nothing to start from: no pose. Once it flows again, start afresh here,
   // from the last pose, so the trajectory continues where it was.
-  ImuGap* gap = GapBefore(t_imu_ns);
+  ImuGap* gap = GapFor(t_imu_ns);
   const bool covered = !imu_.empty() && imu_.back().t_ns >= t_imu_ns;
   if (!covered || ImuHasGap(t_imu_ns, t_imu_ns)) {
     ++summary_.frames_without_imu;
