@@ -52,8 +52,9 @@ TEST(InputWarnings, NameEachFaultOnce) {
   open.t_start_ns = 8000000000;
   open.frames_lost = 3;
   s.imu_gaps = {bridged, open};
+  input.observations.outside_image = 60;
   const std::vector<std::string> w = InputWarnings(input, s, ImuRange());
-  ASSERT_EQ(w.size(), 5u);
+  ASSERT_EQ(w.size(), 6u);
   EXPECT_EQ(w[0],
             "warning: seq/mav0/imu0/data.csv:989: 2 exact repeat(s) of an IMU "
             "line dropped (the first here)");
@@ -68,6 +69,9 @@ TEST(InputWarnings, NameEachFaultOnce) {
   EXPECT_THAT(w[4], HasSubstr("IMU gap from t = 7.000 s (8000000000 ns) on: "
                               "no sample after it: 0 frame(s) tracked on "
                               "vision alone, 3 without a pose"));
+  EXPECT_EQ(w[5],
+            "warning: 60 observation(s) with a pixel outside the image "
+            "removed");
 }
 
 TEST(DescribeInputHandling, CountsPosesGapsAndResetsByCause) {

@@ -88,6 +88,12 @@ std::vector<std::string> InputWarnings(const InputReport& input,
   for (const ImuGap& gap : summary.imu_gaps) {
     out.push_back(GapWarning(gap, input.start_ns));
   }
+  if (input.observations.outside_image > 0) {
+    out.push_back(
+        Format("warning: %lld observation(s) with a pixel outside the image "
+               "removed",
+               static_cast<long long>(input.observations.outside_image)));
+  }
   return out;
 }
 

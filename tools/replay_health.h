@@ -25,8 +25,8 @@ struct InputReport {
 
 // One line per fault, each starting "warning: ": the reader's dropped IMU
 // lines (once per kind, with the first line), samples outside the measuring
-// range, and each IMU gap longer than max_sample_gap with its time, length
-// and what became of the frames across it.
+// range, each IMU gap longer than max_sample_gap with its time, length and
+// what became of the frames across it, and observations outside the image.
 std::vector<std::string> InputWarnings(const InputReport& input,
                                        const EstimatorSummary& summary,
                                        const ImuRange& range);
