@@ -111,7 +111,11 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << (o.solver.max_time_s > 0.0
               ? "<= " + std::to_string(o.solver.max_time_s) + " s (real time), "
               : std::string("no time limit, "))
-      << o.solver.num_threads << " thread(s)\n";
+      << o.solver.num_threads << " thread(s)\n"
+      << "  imu stream: " << o.imu_stream.rate_hz << " Hz, range +-"
+      << o.imu_stream.range.accelerometer_range << " m/s^2, +-"
+      << o.imu_stream.range.gyroscope_range << " rad/s; speed limit "
+      << o.failure.max_speed_m_s << " m/s\n";
   return out.str();
 }
 
