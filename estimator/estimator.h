@@ -171,6 +171,7 @@ class Estimator {
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::vector<double*> extrinsic_prior_blocks_;
   std::vector<ImuSample> imu_;
+  WindowSolver solver_;  // its buffers serve every step
   bool initialized_ = false;
   int64_t next_frame_id_ = 0;
   int64_t last_keyframe_id_ = -1;
