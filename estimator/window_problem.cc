@@ -93,6 +93,7 @@ bool WindowProblem::AddImuFactors() {
   for (size_t k = 1; k < frames.size(); ++k) {
     WindowFrame& i = *frames[k - 1];
     WindowFrame& j = *frames[k];
+    if (!j.imu) continue;  // across an IMU gap: linked by landmarks only
     Residual r;
     try {
       r.owned = std::make_unique<ImuFactor>(j.imu->result(),
@@ -201,6 +202,14 @@ Eigen::Vector2d WindowProblem::MotionVelocity(
                                 window_->T_b_c(0));
 }
 
+std::vector<bool> WindowProblem::TouchedBlocks() const {
+  // A block no residual touches (the speed-bias of a frame placed by vision
+  // across an IMU gap) is not estimated: it stays as it is.
+  std::vector<bool> touched(block_order_.size(), false);
+  for (const int index : indices_) touched[index] = true;
+  return touched;
+}
+
 ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options,
                                             WindowSolver* solver) {
   if (options.backend == SolverBackend::kCeres) return SolveWithCeres(options);
@@ -210,13 +219,15 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options,
     solver = local.get();
   }
   WindowSolverProblem& p = *solver->NewProblem();
-  for (double* values : block_order_) {
+  const std::vector<bool> touched = TouchedBlocks();
+  for (size_t i = 0; i < block_order_.size(); ++i) {
+    double* values = block_order_[i];
     const BlockInfo& info = blocks_.at(values);
     WindowSolverBlock b;
     b.values = values;
     b.size = info.size;
     b.manifold = info.manifold;
-    b.constant = info.constant;
+    b.constant = info.constant || !touched[i];
     b.eliminated = info.landmark;
     if (info.bound > 0.0) {
       b.lower = -info.bound;
@@ -246,11 +257,15 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options,
 ceres::Solver::Summary WindowProblem::SolveWithCeres(
     const SolverOptions& options) {
   ceres::Problem problem(ProblemOptions());
-  for (double* values : block_order_) {
+  const std::vector<bool> touched = TouchedBlocks();
+  for (size_t i = 0; i < block_order_.size(); ++i) {
+    double* values = block_order_[i];
     const BlockInfo& info = blocks_.at(values);
     problem.AddParameterBlock(values, info.size,
                               const_cast<ceres::Manifold*>(info.manifold));
-    if (info.constant) problem.SetParameterBlockConstant(values);
+    if (info.constant || !touched[i]) {
+      problem.SetParameterBlockConstant(values);
+    }
     for (int c = 0; c < info.size && info.bound > 0.0; ++c) {
       problem.SetParameterLowerBound(values, c, -info.bound);
       problem.SetParameterUpperBound(values, c, info.bound);
@@ -345,11 +360,14 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
     m.parameter_blocks.push_back(
         {values, info.size, info.manifold, info.constant});
   }
-  m.marginalized.push_back(oldest.pose.data());
-  m.marginalized.push_back(oldest.speed_bias.data());
+  // Across an IMU gap the oldest speed-bias may be in no factor at all.
+  for (const double* block : {oldest.pose.data(), oldest.speed_bias.data()}) {
+    if (touched.count(block) != 0) m.marginalized.push_back(block);
+  }
   for (const Residual& r : residuals_) {
     if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-        !excluded.Involves(r.feature_id) && m.marginalized.back() != r.rho) {
+        !excluded.Involves(r.feature_id) &&
+        (m.marginalized.empty() || m.marginalized.back() != r.rho)) {
       m.marginalized.push_back(r.rho);
     }
   }

@@ -78,8 +78,9 @@ class WindowProblem {
   // The prior (not owned) on its blocks, which must be window blocks.
   void AddPrior(const MarginalizationPrior* prior,
                 const std::vector<double*>& blocks);
-  // IMU factors between consecutive window frames. Returns false (and adds
-  // none) when one cannot be built (a covariance not positive definite).
+  // IMU factors between consecutive window frames (none across an IMU gap,
+  // where a frame has no interval). Returns false (and adds none) when one
+  // cannot be built (a covariance not positive definite).
   bool AddImuFactors();
   // Visual factors of up to max_landmarks landmarks, those with the most
   // sightings first (ties by feature id). Returns the landmarks used.
@@ -135,6 +136,8 @@ class WindowProblem {
 
   void AddBlock(double* values, int size, bool pose, bool constant);
   ceres::Solver::Summary SolveWithCeres(const SolverOptions& options);
+  // Per block of block_order_: whether any residual has it.
+  std::vector<bool> TouchedBlocks() const;
   void AddResidual(Residual residual);
   void AddLandmark(Landmark* landmark);
   // Image velocity d xy / dt [1/s] of the camera-0 point p_c [m] in frame,
