@@ -72,7 +72,7 @@ struct StatePriorOptions {
   double gyro_bias = 0.005;      // [rad/s]
   // The camera extrinsic's calibration, when it is estimated: without a
   // prior its translation is unobservable until the body rotates, and it
-  // wanders during the still start (see README, "Online calibration").
+  // wanders during the still start (docs/estimator.md, "Online calibration").
   double extrinsic_rotation_rad = 0.02;   // about the camera axes [rad]
   double extrinsic_translation_m = 0.01;  // [m]
 };
@@ -107,7 +107,8 @@ struct EstimatorOptions {
   bool estimate_extrinsics = false;
   // Camera-IMU time offset t_d, t_imu = t_cam + t_d [s]: frame poses sit at
   // t_cam + t_d. Estimated online (camera-0 factors, image velocity predicted
-  // from the state) when asked, within +-0.02 s (README, Online calibration).
+  // from the state) when asked, within +-0.02 s (docs/estimator.md, Online
+  // calibration).
   bool estimate_time_offset = false;
   double initial_time_offset_s = 0.0;
   // Stereo: use camera 1 too (the sequence must have it).
