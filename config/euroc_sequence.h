@@ -19,13 +19,15 @@ struct EurocSequence {
   EurocData data;
   // cameras[i] is the calibration of data.cameras[i] (camN/sensor.yaml).
   std::vector<CameraCalibration> cameras;
-  EurocImuSensor imu;  // imu0/sensor.yaml
+  EurocImuSensor imu;  // imu0/sensor.yaml (defaults when data.has_imu is false)
 };
 
 // Reads <folder>/mav0/... Throws DatasetError for the data files and
 // ConfigError for a sensor.yaml (missing, malformed, lacking a key), each
-// naming the file and the line or key.
-EurocSequence LoadEurocSequence(const std::string& folder);
+// naming the file and the line or key. With options.require_imu false a
+// folder without imu0/ loads without IMU (see EurocReadOptions).
+EurocSequence LoadEurocSequence(const std::string& folder,
+                                const EurocReadOptions& options = {});
 
 }  // namespace vio
 
