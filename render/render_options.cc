@@ -78,7 +78,8 @@ bool RenderOptions::Validate(std::string* message) const {
     return Fail(message, "shot_noise_grey must be >= 0");
   }
   SceneLayout layout;  // boxes are checked against the room by the caller
-  layout.half_length_x_m = layout.half_width_y_m = layout.height_m = 1e9;
+  layout.min_corner = Eigen::Vector3d(-1e9, -1e9, 0.0);
+  layout.max_corner = Eigen::Vector3d(1e9, 1e9, 1e9);
   layout.boxes = boxes;
   std::string m;
   if (!layout.Validate(&m)) return Fail(message, m);

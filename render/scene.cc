@@ -36,11 +36,21 @@ bool ScenePlane::IsValid() const {
          std::abs(axis_u_w.dot(axis_v_w)) < kTolerance;
 }
 
+Eigen::Vector3d SceneLayout::FloorCentre() const {
+  return Eigen::Vector3d(0.5 * (min_corner.x() + max_corner.x()),
+                         0.5 * (min_corner.y() + max_corner.y()),
+                         min_corner.z());
+}
+
 bool SceneLayout::Validate(std::string* message) const {
-  if (!Positive(half_length_x_m) || !Positive(half_width_y_m) ||
-      !Positive(height_m)) {
+  const Eigen::Vector3d size = max_corner - min_corner;
+  if (!min_corner.allFinite() || !max_corner.allFinite() ||
+      !Positive(size.x()) || !Positive(size.y()) || !Positive(size.z())) {
     return Fail(message, "room sizes must be > 0");
   }
+  const double half_length_x_m = 0.5 * size.x();
+  const double half_width_y_m = 0.5 * size.y();
+  const double height_m = size.z();
   for (size_t i = 0; i < boxes.size(); ++i) {
     const SceneBox& b = boxes[i];
     const std::string name = "boxes[" + std::to_string(i) + "]";
@@ -130,30 +140,33 @@ SceneGeometry MakeRoomScene(const SceneLayout& layout) {
   const Eigen::Vector3d x = Eigen::Vector3d::UnitX();
   const Eigen::Vector3d y = Eigen::Vector3d::UnitY();
   const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
-  const double hx = layout.half_length_x_m, hy = layout.half_width_y_m;
-  const double h = layout.height_m;
+  const Eigen::Vector3d size = layout.max_corner - layout.min_corner;
+  const double hx = 0.5 * size.x(), hy = 0.5 * size.y(), h = size.z();
+  // Built around the floor centre c, then shifted there.
+  const Eigen::Vector3d c = layout.FloorCentre();
   // Room: normals inwards; walls with u horizontal and v up.
   std::vector<ScenePlane> planes = {
-      Plane({-hx, -hy, 0}, x, y, 2 * hx, 2 * hy),  // floor, n = +z
-      Plane({-hx, -hy, h}, y, x, 2 * hy, 2 * hx),  // ceiling, n = -z
-      Plane({-hx, -hy, 0}, y, z, 2 * hy, h),       // x = -hx, n = +x
-      Plane({hx, hy, 0}, -y, z, 2 * hy, h),        // x = +hx, n = -x
-      Plane({hx, -hy, 0}, -x, z, 2 * hx, h),       // y = -hy, n = +y
-      Plane({-hx, hy, 0}, x, z, 2 * hx, h),        // y = +hy, n = -y
+      Plane(c + Eigen::Vector3d(-hx, -hy, 0), x, y, 2 * hx, 2 * hy),  // floor
+      Plane(c + Eigen::Vector3d(-hx, -hy, h), y, x, 2 * hy, 2 * hx),  // ceiling
+      Plane(c + Eigen::Vector3d(-hx, -hy, 0), y, z, 2 * hy, h),       // n = +x
+      Plane(c + Eigen::Vector3d(hx, hy, 0), -y, z, 2 * hy, h),        // n = -x
+      Plane(c + Eigen::Vector3d(hx, -hy, 0), -x, z, 2 * hx, h),       // n = +y
+      Plane(c + Eigen::Vector3d(-hx, hy, 0), x, z, 2 * hx, h),        // n = -y
   };
   const int room_planes = static_cast<int>(planes.size());
   // Boxes: normals outwards, no bottom.
   for (const SceneBox& b : layout.boxes) {
-    const double x0 = b.center_xy_m.x() - 0.5 * b.size_m.x();
-    const double x1 = b.center_xy_m.x() + 0.5 * b.size_m.x();
-    const double y0 = b.center_xy_m.y() - 0.5 * b.size_m.y();
-    const double y1 = b.center_xy_m.y() + 0.5 * b.size_m.y();
+    const double x0 = c.x() + b.center_xy_m.x() - 0.5 * b.size_m.x();
+    const double x1 = c.x() + b.center_xy_m.x() + 0.5 * b.size_m.x();
+    const double y0 = c.y() + b.center_xy_m.y() - 0.5 * b.size_m.y();
+    const double y1 = c.y() + b.center_xy_m.y() + 0.5 * b.size_m.y();
+    const double z0 = c.z(), z1 = c.z() + b.size_m.z();
     const double sx = b.size_m.x(), sy = b.size_m.y(), sz = b.size_m.z();
-    planes.push_back(Plane({x0, y0, sz}, x, y, sx, sy));  // top, n = +z
-    planes.push_back(Plane({x1, y0, 0}, y, z, sy, sz));   // n = +x
-    planes.push_back(Plane({x0, y1, 0}, -y, z, sy, sz));  // n = -x
-    planes.push_back(Plane({x1, y1, 0}, -x, z, sx, sz));  // n = +y
-    planes.push_back(Plane({x0, y0, 0}, x, z, sx, sz));   // n = -y
+    planes.push_back(Plane({x0, y0, z1}, x, y, sx, sy));   // top, n = +z
+    planes.push_back(Plane({x1, y0, z0}, y, z, sy, sz));   // n = +x
+    planes.push_back(Plane({x0, y1, z0}, -y, z, sy, sz));  // n = -x
+    planes.push_back(Plane({x1, y1, z0}, -x, z, sx, sz));  // n = +y
+    planes.push_back(Plane({x0, y0, z0}, x, z, sx, sz));   // n = -y
   }
   return SceneGeometry(std::move(planes), room_planes);
 }

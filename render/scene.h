@@ -33,22 +33,26 @@ struct ScenePlane {
   bool IsValid() const;
 };
 
-// The room of the simulator (dataset/simulator.h: SimRoomOptions) and the
-// boxes in it; kept here so that render/ needs nothing of the simulator.
+// A box standing on the floor of the room, axis-aligned.
 struct SceneBox {
-  Eigen::Vector2d center_xy_m = Eigen::Vector2d::Zero();  // on the floor [m]
-  Eigen::Vector3d size_m = Eigen::Vector3d::Ones();       // x, y, height [m]
+  // Centre of its footprint, from the centre of the room's floor [m].
+  Eigen::Vector2d center_xy_m = Eigen::Vector2d::Zero();
+  Eigen::Vector3d size_m = Eigen::Vector3d::Ones();  // x, y, height [m]
 };
 
+// The room (the simulator's, dataset/simulator.h, or one sized to a
+// recorded flight) and the boxes in it; kept here so that render/ needs
+// nothing of the simulator.
 struct SceneLayout {
-  double half_length_x_m = 7.0;  // walls at x = +-half_length_x_m [m]
-  double half_width_y_m = 6.0;   // walls at y = +-half_width_y_m [m]
-  double height_m = 4.0;         // floor z = 0, ceiling z = height_m [m]
+  Eigen::Vector3d min_corner{-7.0, -6.0, 0.0};  // floor at min z [m]
+  Eigen::Vector3d max_corner{7.0, 6.0, 4.0};    // ceiling at max z [m]
   std::vector<SceneBox> boxes;
 
-  // True when the room's sizes are > 0, every box has sizes > 0, lies
-  // inside the room and below its ceiling, and no two boxes overlap; else
-  // false with a message that starts with the field ("boxes[2].size_m ...").
+  // The world position of the centre of the floor [m].
+  Eigen::Vector3d FloorCentre() const;
+  // True when the room has sizes > 0, every box has sizes > 0, lies inside
+  // the room and below its ceiling, and no two boxes overlap; else false
+  // with a message that starts with the field ("boxes[2].size_m ...").
   bool Validate(std::string* message) const;
 };
 
