@@ -39,7 +39,7 @@ struct RenderOptions {
   // image moves at most blur_step_px between two of them (at most
   // max_blur_samples). 0 s: no blur.
   double exposure_time_s = 0.004;  // [s]
-  double blur_step_px = 0.5;       // [px]
+  double blur_step_px = 1.0;       // [px]
   int max_blur_samples = 16;       // [-]
 
   // Brightness = radiance x gain x vignetting. The gain follows a random
