@@ -25,7 +25,9 @@ struct EurocSequence {
 // Reads <folder>/mav0/... Throws DatasetError for the data files and
 // ConfigError for a sensor.yaml (missing, malformed, lacking a key), each
 // naming the file and the line or key. With options.require_imu false a
-// folder without imu0/ loads without IMU (see EurocReadOptions).
+// folder without imu0/ loads without IMU; options.strict: IMU stamps repeated
+// or out of order are errors instead of dropped and counted samples
+// (EurocReadOptions in dataset/euroc_reader.h).
 EurocSequence LoadEurocSequence(const std::string& folder,
                                 const EurocReadOptions& options = {});
 

@@ -94,21 +94,28 @@ std::string JoinPath(const std::string& folder, const std::string& name) {
   return (fs::path(folder) / name).string();
 }
 
-std::vector<ImuSample> ReadEurocImu(const std::string& path) {
+std::vector<ImuSample> ReadEurocImu(const std::string& path,
+                                    ImuStampReport* report) {
   RequireFile(path);
   CsvReader csv(path);
-  std::vector<ImuSample> samples;
+  std::vector<ImuLine> lines;
   while (csv.Next()) {
     RequireFieldCount(csv, 7, "timestamp, 3 angular rates, 3 accelerations");
     ImuSample s;
     s.t_ns = csv.Int64(0);
-    RequireIncreasing(csv, samples.empty(),
-                      samples.empty() ? 0 : samples.back().t_ns, s.t_ns);
+    if (report == nullptr) {
+      RequireIncreasing(csv, lines.empty(),
+                        lines.empty() ? 0 : lines.back().sample.t_ns, s.t_ns);
+    }
     s.gyr = {csv.Double(1), csv.Double(2), csv.Double(3)};
     s.acc = {csv.Double(4), csv.Double(5), csv.Double(6)};
-    samples.push_back(s);
+    lines.push_back({s, csv.line()});
   }
-  if (samples.empty()) throw DatasetError(path + ": holds no IMU sample");
+  if (lines.empty()) throw DatasetError(path + ": holds no IMU sample");
+  if (report != nullptr) return FilterImuStamps(lines, report);
+  std::vector<ImuSample> samples;
+  samples.reserve(lines.size());
+  for (const ImuLine& l : lines) samples.push_back(l.sample);
   return samples;
 }
 
@@ -169,7 +176,10 @@ EurocData ReadEurocFolder(const std::string& folder,
   // Without imu0/ at all the caller may accept the folder; an imu0/ without
   // data.csv is always an error.
   data.has_imu = options.require_imu || IsFolder(JoinPath(mav0, "imu0"));
-  if (data.has_imu) data.imu = ReadEurocImu(JoinPath(mav0, "imu0/data.csv"));
+  if (data.has_imu) {
+    data.imu = ReadEurocImu(JoinPath(mav0, "imu0/data.csv"),
+                            options.strict ? nullptr : &data.imu_stamps);
+  }
   for (int n = 0;; ++n) {
     const std::string camera = JoinPath(mav0, "cam" + std::to_string(n));
     if (!IsFolder(camera)) break;

@@ -5,7 +5,7 @@
 // format so the sequence can be replayed without images.
 //
 //   vio_track <sequence folder> [--config FILE] [--save-tracks FILE]
-//             [--ground-truth FILE] [--max-gap N]
+//             [--ground-truth FILE] [--max-gap N] [--strict]
 
 #include <cstdio>
 #include <cstdlib>
@@ -26,7 +26,7 @@ namespace {
 
 constexpr char kUsage[] =
     "usage: vio_track <sequence folder> [--config FILE] [--save-tracks FILE]\n"
-    "                 [--ground-truth FILE] [--max-gap N]\n"
+    "                 [--ground-truth FILE] [--max-gap N] [--strict]\n"
     "  --config FILE       YAML with a frontend: block, e.g.\n"
     "                      config/euroc_mono.yaml (default: built-in\n"
     "                      defaults = config/default.yaml, stereo)\n"
@@ -36,6 +36,8 @@ constexpr char kUsage[] =
     "                      epipolar error of the tracks (default: the\n"
     "                      folder's state_groundtruth_estimate0, if any)\n"
     "  --max-gap N         epipolar error for tracks 1..N frames apart (6)\n"
+    "  --strict            refuse an IMU file whose stamps repeat or go\n"
+    "                      backwards (default: such lines are dropped)\n"
     "A rendered sequence (vio_sim --render) also gets the tracks' error\n"
     "against its exact truth (mav0/render/). The IMU is not used: a folder\n"
     "without imu0/ is tracked all the same.\n";
@@ -46,6 +48,7 @@ struct Arguments {
   std::string save_tracks;
   std::string ground_truth;  // empty: the folder's, if any
   int max_gap = 6;
+  bool strict = false;  // refuse repeated or disordered IMU stamps
 };
 
 Arguments Parse(int argc, char** argv) {
@@ -70,6 +73,8 @@ Arguments Parse(int argc, char** argv) {
             v + "')");
       }
       args.max_gap = static_cast<int>(gap);
+    } else if (a == "--strict") {
+      args.strict = true;
     } else if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       std::exit(0);
@@ -141,10 +146,17 @@ int main(int argc, char** argv) {
     // The frontend needs no IMU: a folder without imu0/ is tracked too.
     vio::EurocReadOptions read;
     read.require_imu = false;
+    read.strict = args.strict;
     const vio::EurocSequence sequence =
         vio::LoadEurocSequence(args.folder, read);
     if (!sequence.data.has_imu) {
       std::printf("imu0: none (vio_track does not use the IMU)\n");
+    }
+    if (sequence.data.imu_stamps.dropped() > 0) {
+      std::printf(
+          "warning: %s/mav0/imu0/data.csv: %d IMU line(s) dropped for their "
+          "stamps (repeated or out of order; --strict refuses them)\n",
+          args.folder.c_str(), sequence.data.imu_stamps.dropped());
     }
     vio::ImageTrackingSummary summary;
     std::vector<vio::FeatureFrame> frames =
