@@ -31,8 +31,8 @@ std::string Format(const char* format, double a, double b = 0.0, double c = 0.0,
 }  // namespace
 
 TrackTruthReport TrackTruthOfRenderedSequence(
-    const EurocSequence& sequence, const std::vector<FeatureFrame>& frames) {
-  const RenderTruth truth = ReadRenderTruth(sequence.data.folder);
+    const EurocSequence& sequence, const RenderTruth& truth,
+    const std::vector<FeatureFrame>& frames) {
   std::vector<CameraModel> cameras;
   for (const CameraCalibration& c : sequence.cameras) cameras.emplace_back(c);
   const SceneGeometry& scene = truth.scene;

@@ -13,14 +13,15 @@
 #include "eval/epipolar_error.h"
 #include "eval/track_truth.h"
 #include "geometry/feature_observation.h"
+#include "render/scene_file.h"
 
 namespace vio {
 
-// The truth report of tracks on a rendered sequence folder (it must hold
-// mav0/render/, render/scene_file.h). Throws DatasetError as the truth
-// readers do.
+// The truth report of tracks on a rendered sequence whose truth files
+// (mav0/render/, render/scene_file.h) were read into `truth`.
 TrackTruthReport TrackTruthOfRenderedSequence(
-    const EurocSequence& sequence, const std::vector<FeatureFrame>& frames);
+    const EurocSequence& sequence, const RenderTruth& truth,
+    const std::vector<FeatureFrame>& frames);
 
 // The epipolar report of the cam0 tracks against `ground_truth` (body
 // poses, interpolated at the frame stamps).

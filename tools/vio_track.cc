@@ -103,25 +103,42 @@ void PrintCounts(const char* name, const vio::ImageCounts& c) {
 }
 
 // The reports against truth that the folder (or --ground-truth) allows.
+// What the accuracy reports need, read before tracking so that a bad truth
+// or ground-truth file stops the run at once.
+struct AccuracyInputs {
+  bool rendered = false;
+  vio::RenderTruth truth;        // when rendered
+  vio::Trajectory ground_truth;  // empty: no epipolar report
+};
+
+AccuracyInputs ReadAccuracyInputs(const Arguments& args,
+                                  const vio::EurocSequence& sequence) {
+  AccuracyInputs in;
+  in.rendered = vio::HasRenderTruth(args.folder);
+  if (in.rendered) in.truth = vio::ReadRenderTruth(args.folder);
+  if (!args.ground_truth.empty()) {
+    in.ground_truth = vio::ReadTrajectory(args.ground_truth);
+  } else {
+    for (const vio::StampedState& s : sequence.data.ground_truth) {
+      in.ground_truth.push_back({s.t_ns, s.p_w_b, s.q_w_b});
+    }
+  }
+  return in;
+}
+
 void PrintAccuracy(const Arguments& args, const vio::EurocSequence& sequence,
+                   const AccuracyInputs& in,
                    const std::vector<vio::FeatureFrame>& frames) {
-  if (vio::HasRenderTruth(args.folder)) {
-    std::printf("%s", vio::DescribeTrackTruth(
-                          vio::TrackTruthOfRenderedSequence(sequence, frames))
+  if (in.rendered) {
+    std::printf("%s", vio::DescribeTrackTruth(vio::TrackTruthOfRenderedSequence(
+                                                  sequence, in.truth, frames))
                           .c_str());
   } else {
     std::printf(
         "%s",
         vio::DescribeTrackLengths(vio::ComputeTrackLengths(frames)).c_str());
   }
-  vio::Trajectory ground_truth;
-  if (!args.ground_truth.empty()) {
-    ground_truth = vio::ReadTrajectory(args.ground_truth);
-  } else {
-    for (const vio::StampedState& s : sequence.data.ground_truth) {
-      ground_truth.push_back({s.t_ns, s.p_w_b, s.q_w_b});
-    }
-  }
+  const vio::Trajectory& ground_truth = in.ground_truth;
   if (ground_truth.empty()) return;
   std::printf("%s", vio::DescribeEpipolarError(
                         vio::EpipolarErrorAgainst(sequence, frames,
@@ -158,6 +175,7 @@ int main(int argc, char** argv) {
           "stamps (repeated or out of order; --strict refuses them)\n",
           args.folder.c_str(), sequence.data.imu_stamps.dropped());
     }
+    const AccuracyInputs accuracy = ReadAccuracyInputs(args, sequence);
     vio::ImageTrackingSummary summary;
     std::vector<vio::FeatureFrame> frames =
         vio::TrackEurocImages(sequence, options, &summary);
@@ -187,7 +205,7 @@ int main(int argc, char** argv) {
         n > 0 ? 1e3 * summary.track_cpu_seconds / n : 0.0,
         summary.track_cpu_seconds > 0 ? n / summary.track_cpu_seconds : 0.0,
         n > 0 ? 1e3 * summary.read_seconds / n : 0.0);
-    PrintAccuracy(args, sequence, frames);
+    PrintAccuracy(args, sequence, accuracy, frames);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
