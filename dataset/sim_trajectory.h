@@ -26,6 +26,8 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "dataset/trajectory_source.h"
+
 namespace vio {
 
 struct SimMotionOptions {
@@ -47,16 +49,7 @@ struct SimMotionOptions {
   bool Validate(std::string* message) const;
 };
 
-// The true state at one instant.
-struct SimState {
-  Eigen::Vector3d p_w_b;  // position [m]
-  Eigen::Vector3d v_w;    // velocity in W [m/s]
-  Eigen::Vector3d a_w;    // acceleration in W [m/s^2]
-  Eigen::Quaterniond q_w_b;
-  Eigen::Vector3d w_b;  // angular rate in B [rad/s]
-};
-
-class SimTrajectory {
+class SimTrajectory : public TrajectorySource {
  public:
   // `options` must be valid (Validate()); throws std::invalid_argument if not.
   explicit SimTrajectory(const SimMotionOptions& options);
@@ -64,7 +57,7 @@ class SimTrajectory {
   // The state at `t` seconds after the start. Before the start it is the
   // still pose when there is a still start or blend, else the analytic path
   // continued backwards.
-  SimState At(double t) const;
+  SimState At(double t) const override;
 
   const SimMotionOptions& options() const { return options_; }
 
