@@ -12,6 +12,8 @@
 
 #include <string>
 
+#include "estimator/initialization_options.h"
+
 namespace vio {
 
 // When a new frame becomes a keyframe (the newest frame against the last
@@ -119,6 +121,8 @@ struct EstimatorOptions {
   StatePriorOptions state_prior;
   FailureOptions failure;
   SolverOptions solver;
+  InitOptions init;                   // how the estimator starts
+  ZeroVelocityOptions zero_velocity;  // holding still when still
 
   // True when every field is in range; otherwise false with a message that
   // starts with the offending field's name ("window_size must be >= 2 ...").
