@@ -18,6 +18,8 @@ const char* InitFailureName(InitFailure failure) {
       return "IMU not still";
     case InitFailure::kImageMoving:
       return "features moving";
+    case InitFailure::kNoImageVerdict:
+      return "too few features tracked to judge stillness";
     case InitFailure::kLowImuExcitation:
       return "too little IMU excitation";
     case InitFailure::kFewCorrespondences:
@@ -27,7 +29,7 @@ const char* InitFailureName(InitFailure failure) {
     case InitFailure::kFewInliers:
       return "too few essential-matrix inliers";
     case InitFailure::kRotationMismatch:
-      return "essential-matrix rotation disagrees with the gyroscope";
+      return "visual rotations disagree with the gyroscope";
     case InitFailure::kPnpFailed:
       return "PnP failed";
     case InitFailure::kReprojectionError:

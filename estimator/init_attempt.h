@@ -20,6 +20,7 @@ enum class InitFailure {
   kImuUnavailable,         // the IMU does not cover the frames (a gap)
   kNotStill,               // static: the IMU block means vary [m/s^2 or rad/s]
   kImageMoving,            // static: the features move [px]
+  kNoImageVerdict,         // static: too few features tracked over the span
   kLowImuExcitation,       // mono: std of the mean specific force [m/s^2]
   kFewCorrespondences,     // mono: features shared by the reference pair
   kLowParallax,            // mono: rotation-compensated median parallax [px]
@@ -53,7 +54,8 @@ std::string DescribeInitAttempt(const InitAttempt& attempt);
 
 // Why no start was accepted: per method tried, its last failure and how
 // often each reason occurred, e.g.
-//   "mono: too little IMU excitation (0.02 < 0.25), 540 of 560 attempts; ..."
+//   "last mono: too little IMU excitation (0.02 vs limit 0.25), 560 attempts
+//   (too little IMU excitation 540, too little parallax 20)"
 // "no attempt was made" when the log is empty.
 std::string DescribeInitFailures(const std::vector<InitAttempt>& attempts);
 

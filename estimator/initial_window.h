@@ -55,6 +55,16 @@ struct InitialWindow {
   InitDiagnostics diagnostics;
 };
 
+// An accepted start, for the summary: the first window's states right after
+// the joint adjustment (observations left out).
+struct StartRecord {
+  int64_t t_ns = 0;  // the frame it happened at [ns]
+  InitMethod method = InitMethod::kStatic;
+  bool restart = false;  // a re-initialisation after a failure reset
+  InitDiagnostics diagnostics;
+  std::vector<InitialFrame> window;
+};
+
 // Moves the window rigidly about the world z axis and along it so that its
 // newest frame gets position p_w_b and the yaw `yaw_rad` (the 4-DoF gauge of
 // visual-inertial odometry: a start fixes it, a re-start keeps the running

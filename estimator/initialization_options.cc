@@ -80,18 +80,20 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
   r.AtLeast("init.mono.min_correspondences", mono.min_correspondences, 8);
   r.AtLeast("init.mono.min_inliers", mono.min_inliers, 8);
   r.Positive("init.mono.ransac_threshold_px", mono.ransac_threshold_px);
-  r.Positive("init.mono.max_rotation_mismatch_deg",
-             mono.max_rotation_mismatch_deg);
   r.AtLeast("init.mono.min_pnp_inliers", mono.min_pnp_inliers, 6);
+  r.Positive("init.mono.pnp_threshold_px", mono.pnp_threshold_px);
   r.Positive("init.mono.max_reprojection_rms_px", mono.max_reprojection_rms_px);
   r.AtLeast("init.mono.bundle_iterations", mono.bundle_iterations, 1);
   r.NonNegative("init.mono.min_imu_excitation", mono.min_imu_excitation);
   r.Positive("init.mono.max_scale_uncertainty", mono.max_scale_uncertainty);
   r.Positive("init.stereo.window_s", stereo.window_s);
-  r.AtLeast("init.stereo.min_frames", stereo.min_frames, 2);
+  r.Positive("init.stereo.min_span_s", stereo.min_span_s);
+  r.Require(stereo.min_span_s <= stereo.window_s, "init.stereo.min_span_s",
+            stereo.min_span_s, "must be <= init.stereo.window_s");
   r.AtLeast("init.stereo.min_stereo_points", stereo.min_stereo_points, 6);
   r.AtLeast("init.stereo.min_pnp_inliers", stereo.min_pnp_inliers, 6);
-  r.Positive("init.stereo.ransac_threshold_px", stereo.ransac_threshold_px);
+  r.Positive("init.stereo.pnp_threshold_px", stereo.pnp_threshold_px);
+  r.Positive("init.max_rotation_misfit_deg", max_rotation_misfit_deg);
   r.Positive("init.max_gravity_error", max_gravity_error);
   r.Positive("init.max_speed_m_s", max_speed_m_s);
   r.AtLeast("init.refine_iterations", refine_iterations, 0);

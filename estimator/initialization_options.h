@@ -28,39 +28,41 @@ bool ParseInitMethod(const std::string& name, InitMethod* method);
 // Monocular start in motion: up-to-scale structure from motion over the
 // recent frames, then visual-inertial alignment.
 struct MonoInitOptions {
-  double window_s = 1.5;  // frames of the last window_s are used [s]
+  double window_s = 2.0;  // frames of the last window_s are used [s]
   // Of them at most this many, evenly spread, the newest always kept; they
   // become the first window, so at most window_size + 1 [-].
   int max_frames = 11;
-  double min_span_s = 0.5;  // the frames used span at least [s]
-  // Median parallax of the reference pair after the gyroscope's rotation is
-  // taken out (pure rotation gives none) [px].
-  double min_parallax_px = 25.0;
-  int min_correspondences = 40;  // features the reference pair shares [-]
-  int min_inliers = 30;  // essential-matrix inliers in front of both [-]
-  double ransac_threshold_px = 1.0;  // epipolar distance, essential matrix [px]
-  // Angle between the essential matrix's rotation and the gyroscope's [deg].
-  double max_rotation_mismatch_deg = 3.0;
-  int min_pnp_inliers = 15;  // per frame placed by PnP [-]
+  // The frames used span at least [s]: the scale shows in how the
+  // acceleration varies, which needs time (docs/initialisation.md).
+  double min_span_s = 1.5;
+  // Median parallax of the reference pair left over by the rotation that
+  // best explains it (pure rotation leaves none, whatever the gyroscope
+  // bias) [px].
+  double min_parallax_px = 20.0;
+  int min_correspondences = 30;  // features the reference pair shares [-]
+  int min_inliers = 25;  // essential-matrix inliers in front of both [-]
+  double ransac_threshold_px = 2.0;  // epipolar distance, essential matrix [px]
+  int min_pnp_inliers = 15;          // per frame placed by PnP [-]
+  double pnp_threshold_px = 3.0;     // PnP RANSAC reprojection threshold [px]
   // Reprojection RMS after the structure-from-motion bundle adjustment [px].
-  double max_reprojection_rms_px = 2.0;
+  double max_reprojection_rms_px = 2.5;
   int bundle_iterations = 15;  // of that adjustment [-]
   // IMU excitation: standard deviation over the intervals of the mean
   // specific force dv / T (VINS-Mono's test, which it only warns about).
   // Constant velocity or a constant-speed turn give almost none [m/s^2].
   double min_imu_excitation = 0.25;
   // Relative standard deviation of the least-squares scale [-].
-  double max_scale_uncertainty = 0.05;
+  double max_scale_uncertainty = 0.25;
 };
 
 // Stereo start in motion: depths from the first stereo pair, later frames by
 // PnP, then gyroscope bias, velocities and gravity from the IMU.
 struct StereoInitOptions {
-  double window_s = 0.3;       // frames of the last window_s are used [s]
-  int min_frames = 4;          // at least [-]
+  double window_s = 0.4;       // frames of the last window_s are used [s]
+  double min_span_s = 0.35;    // the frames used span at least [s]
   int min_stereo_points = 20;  // triangulated from the oldest frame's pair [-]
   int min_pnp_inliers = 15;    // per frame placed by PnP [-]
-  double ransac_threshold_px = 1.5;  // PnP reprojection threshold [px]
+  double pnp_threshold_px = 3.0;  // PnP RANSAC reprojection threshold [px]
 };
 
 struct InitOptions {
@@ -68,18 +70,23 @@ struct InitOptions {
   MonoInitOptions mono;
   StereoInitOptions stereo;
   // Checks shared by the in-motion starts.
+  // RMS over the intervals of the angle between the visual and the
+  // preintegrated rotation once the gyroscope bias is fitted [deg].
+  double max_rotation_misfit_deg = 0.5;
   // | |g_estimated| - gravity_magnitude | of the unconstrained alignment
   // [m/s^2].
   double max_gravity_error = 0.5;
   double max_speed_m_s = 15.0;  // an estimated velocity beyond: implausible
   // The joint visual-inertial bundle adjustment of the first window right
-  // after alignment: iterations, and the largest change of the trajectory's
-  // scale it may make before the start is refused [-].
-  int refine_iterations = 10;
-  double max_refine_scale_change = 0.1;
+  // after alignment: iterations (it has to walk the scale out of the
+  // alignment's bias: ~50 from 40 % off), and the largest change of the
+  // trajectory's scale it may make before the start is refused [-].
+  int refine_iterations = 50;
+  double max_refine_scale_change = 1.0;
   // Its prior on the oldest frame's roll and pitch: loose, so that the
-  // adjustment corrects the alignment's gravity [rad].
-  double refine_tilt_rad = 0.05;
+  // adjustment corrects the alignment's gravity [rad]. (Position and yaw get
+  // state_prior's, velocity none: max_speed_m_s as its std.)
+  double refine_tilt_rad = 0.5;
   // After a failure reset while moving, run the in-motion initialiser again
   // and let its states replace the restarted window (position and yaw kept).
   bool reinitialize_after_reset = true;

@@ -81,6 +81,11 @@ class WindowProblem {
   // Visual factors of up to max_landmarks landmarks, those with the most
   // sightings first (ties by feature id). Returns the landmarks used.
   int AddVisualFactors();
+  // A factor (owned from now on) between two consecutive window frames whose
+  // older one is `start_frame`, on window blocks: it leaves with that frame
+  // at its marginalisation, like the IMU factor (the zero-motion factor).
+  void AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
+                    const std::vector<double*>& blocks, int64_t start_frame);
 
   // Solves with the options (threads as given).
   ceres::Solver::Summary Solve(const SolverOptions& options);
@@ -111,7 +116,8 @@ class WindowProblem {
     int64_t target_frame = -1;  // visual residuals: the sighting's frame
     int target_camera = 0;
     int64_t anchor_frame = -1;
-    int64_t imu_start_frame = -1;  // IMU residuals only
+    int64_t imu_start_frame = -1;   // IMU residuals only
+    int64_t link_start_frame = -1;  // AddFrameLink residuals only
   };
   struct BlockInfo {
     int size = 0;

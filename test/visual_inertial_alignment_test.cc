@@ -89,6 +89,17 @@ SimulatorOptions InMotion(bool noise, uint32_t seed) {
   return o;
 }
 
+// The alignment with the accelerometer bias held at the given one, or
+// estimated with the default prior.
+AlignmentOptions Held(bool estimate_scale) {
+  AlignmentOptions o;
+  o.estimate_scale = estimate_scale;
+  o.accel_bias_sigma = 0.0;
+  return o;
+}
+
+AlignmentOptions Estimated() { return AlignmentOptions(); }
+
 double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
 }
@@ -107,10 +118,10 @@ TEST(VisualInertialAlignment, NoiseFreeRecoversScaleGravityVelocitiesAndBias) {
   const Eigen::Vector3d b_g = AlignGyroscopeBias(s.frames, s.b_a, &s.intervals);
   EXPECT_LT((b_g - s.b_g).norm(), 1e-6) << b_g.transpose();
   EXPECT_LT(RotationMisfitRms(s.frames, s.intervals), 1e-6);
-  // With the true accelerometer bias, the linear system is exact.
+  // With the true accelerometer bias held, the linear system is exact.
   VelocityGravityScale r;
-  ASSERT_TRUE(
-      SolveVelocityGravityScale(s.frames, s.intervals, t_b_c, s.b_a, true, &r));
+  ASSERT_TRUE(SolveVelocityGravityScale(s.frames, s.intervals, t_b_c, s.b_a,
+                                        Held(true), &r));
   EXPECT_NEAR(r.scale, s.scale, 1e-5 * s.scale);
   EXPECT_LT((r.g_v - s.g_v).norm(), 1e-4);
   for (int k = 0; k < kFrames; ++k) {
@@ -119,13 +130,23 @@ TEST(VisualInertialAlignment, NoiseFreeRecoversScaleGravityVelocitiesAndBias) {
   EXPECT_LT(r.scale_sigma, 1e-4 * r.scale);
   // Refining with the magnitude fixed keeps it.
   ASSERT_TRUE(
-      RefineGravity(s.frames, s.intervals, t_b_c, s.b_a, 9.81, true, &r));
+      RefineGravity(s.frames, s.intervals, t_b_c, s.b_a, 9.81, Held(true), &r));
   EXPECT_NEAR(r.g_v.norm(), 9.81, 1e-12);
   EXPECT_LT(AngleDeg(r.g_v, s.g_v), 1e-3);
   EXPECT_NEAR(r.scale, s.scale, 1e-5 * s.scale);
   // The world it defines: gravity along -z.
   const Eigen::Vector3d g_w = GravityAlignedRotation(r.g_v) * r.g_v;
   EXPECT_LT((g_w - Eigen::Vector3d(0, 0, -9.81)).norm(), 1e-9);
+  // Starting from b_a = 0 with the bias estimated under its prior: over
+  // 1.5 s of gentle motion the bias is barely observable (it stays near the
+  // prior's zero, 0.058 of the true 0.075 m/s^2 off), but the scale and
+  // gravity absorb little of it: measured 1.2 % and 0.35 deg.
+  ASSERT_TRUE(SolveVelocityGravityScale(
+      s.frames, s.intervals, t_b_c, Eigen::Vector3d::Zero(), Estimated(), &r));
+  ASSERT_TRUE(RefineGravity(s.frames, s.intervals, t_b_c,
+                            Eigen::Vector3d::Zero(), 9.81, Estimated(), &r));
+  EXPECT_NEAR(r.scale, s.scale, 0.02 * s.scale);
+  EXPECT_LT(AngleDeg(r.g_v, s.g_v), 0.5);
 }
 
 TEST(VisualInertialAlignment, MetricTrajectoryGivesVelocityAndGravityOnly) {
@@ -135,25 +156,27 @@ TEST(VisualInertialAlignment, MetricTrajectoryGivesVelocityAndGravityOnly) {
   AlignGyroscopeBias(s.frames, s.b_a, &s.intervals);
   VelocityGravityScale r;
   ASSERT_TRUE(SolveVelocityGravityScale(s.frames, s.intervals, t_b_c, s.b_a,
-                                        false, &r));
+                                        Held(false), &r));
   EXPECT_EQ(r.scale, 1.0);
   EXPECT_LT((r.g_v - s.g_v).norm(), 1e-4);
   EXPECT_LT((r.v_v.back() - s.v_v.back()).norm(), 1e-5);
 }
 
-// With the simulator's IMU noise and bias walk and attitudes off by 0.1 deg
-// (what a small bundle adjustment leaves), over ten seeds and start times,
-// the accelerometer bias known. Gravity and the gyroscope bias meet the
-// start's bounds from the alignment alone; the scale, from 1.5 s of gentle
-// motion (accelerations ~0.3 m/s^2), comes out within a few percent: the
-// white accelerometer noise alone accounts for up to 4 %. The start's 3 %
-// is met after the joint adjustment (docs/initialisation.md).
-TEST(VisualInertialAlignment, WithNoiseStaysWithinTheStartBounds) {
+// With noise over ten seeds and start times: the simulator's IMU noise and
+// bias walk, attitudes off by 0.1 deg and positions by 0.5 mm, the
+// accelerometer bias given (its effect is the next test's). Gravity and the
+// gyroscope bias meet the start's bounds from the alignment alone; the
+// scale, from 1.5 s of gentle motion (accelerations varying by ~0.3 m/s^2),
+// comes out within a few percent (white accelerometer noise alone accounts
+// for up to 4 %), and visual position noise biases it low (errors in
+// variables: 2 mm already cost 25 %). The start's joint adjustment that
+// follows is what meets the bounds (docs/initialisation.md).
+TEST(VisualInertialAlignment, WithNoiseStaysNearTheTruth) {
   const Eigen::Vector3d t_b_c = CameraExtrinsic().translation();
   Noise noise;
+  noise.position_m = 0.0005;
   noise.rotation_rad = 0.1 * M_PI / 180.0 / std::sqrt(3.0);
-  std::vector<double> scale_errors;
-  double worst_gravity = 0.0, worst_bg = 0.0;
+  std::vector<double> scale_errors, gravity_errors, bias_errors;
   for (uint32_t seed = 1; seed <= 10; ++seed) {
     const Simulation sim = Simulate(InMotion(true, seed));
     Scenario s =
@@ -162,76 +185,67 @@ TEST(VisualInertialAlignment, WithNoiseStaysWithinTheStartBounds) {
         AlignGyroscopeBias(s.frames, s.b_a, &s.intervals);
     VelocityGravityScale r;
     ASSERT_TRUE(SolveVelocityGravityScale(s.frames, s.intervals, t_b_c, s.b_a,
-                                          true, &r));
-    ASSERT_TRUE(
-        RefineGravity(s.frames, s.intervals, t_b_c, s.b_a, 9.81, true, &r));
+                                          Held(true), &r));
+    ASSERT_TRUE(RefineGravity(s.frames, s.intervals, t_b_c, s.b_a, 9.81,
+                              Held(true), &r));
     scale_errors.push_back(std::abs(r.scale / s.scale - 1.0));
-    worst_gravity = std::max(worst_gravity, AngleDeg(r.g_v, s.g_v));
-    worst_bg = std::max(worst_bg, (b_g - s.b_g).norm());
+    gravity_errors.push_back(AngleDeg(r.g_v, s.g_v));
+    bias_errors.push_back((b_g - s.b_g).norm());
   }
   std::sort(scale_errors.begin(), scale_errors.end());
-  // Measured: scale median 2.2 %, worst 5.3 %; gravity 0.09 deg; b_g
-  // 2.9e-3 rad/s (the 0.1 deg attitude noise over 0.15 s intervals).
+  std::sort(gravity_errors.begin(), gravity_errors.end());
+  std::sort(bias_errors.begin(), bias_errors.end());
   std::printf(
-      "alignment with noise, 10 seeds: scale error median %.2f %%, worst "
-      "%.2f %%; gravity worst %.3f deg; |db_g| worst %.5f rad/s\n",
-      100.0 * scale_errors[5], 100.0 * scale_errors.back(), worst_gravity,
-      worst_bg);
-  EXPECT_LT(scale_errors[5], 0.03);
-  EXPECT_LT(scale_errors.back(), 0.08);
-  EXPECT_LT(worst_gravity, 1.0);
-  EXPECT_LT(worst_bg, 4e-3);
+      "alignment with noise, 10 seeds: scale error median %.2f %%, max %.2f "
+      "%%; gravity median %.3f, max %.3f deg; |db_g| median %.5f, max %.5f "
+      "rad/s\n",
+      100.0 * scale_errors[5], 100.0 * scale_errors.back(), gravity_errors[5],
+      gravity_errors.back(), bias_errors[5], bias_errors.back());
+  EXPECT_LT(gravity_errors.back(), 1.0);
+  EXPECT_LT(bias_errors.back(), 4e-3);
+  // Measured: median 2.9 %, max 8.5 %.
+  EXPECT_LT(scale_errors[5], 0.04);
+  EXPECT_LT(scale_errors.back(), 0.12);
 }
 
-// Why the start does not stop at the linear alignment: noise on the visual
-// positions enters the scale's own column (errors in variables), so the
-// least-squares scale is biased low, and an unknown accelerometer bias of
-// 0.075 m/s^2 moves it by about 10 % on this gentle motion. The joint
-// visual-inertial adjustment that follows removes both (docs/
-// initialisation.md has the figures).
-TEST(VisualInertialAlignment, PositionNoiseAndUnknownAccelBiasBiasTheScale) {
-  const Eigen::Vector3d t_b_c = CameraExtrinsic().translation();
+// With exact positions, an unknown accelerometer bias (the simulator's
+// 0.075 m/s^2) held at zero moves the scale by 14 % on this gentle motion;
+// estimated under its prior, by 1.2 %. (The monocular start still holds it:
+// with noisy positions, estimating it soaks up the noise.)
+TEST(VisualInertialAlignment, AnUnknownAccelBiasMovesTheScaleUnlessEstimated) {
   const Simulation sim = Simulate(InMotion(false, 4));
-  Noise noise;
-  noise.position_m = 0.002;
-  double mean_ratio = 0.0;
-  for (uint32_t seed = 1; seed <= 5; ++seed) {
-    Scenario s = MakeScenario(sim, 40, kStride, kFrames, 0.3, noise, seed);
-    AlignGyroscopeBias(s.frames, s.b_a, &s.intervals);
-    VelocityGravityScale r;
-    ASSERT_TRUE(SolveVelocityGravityScale(s.frames, s.intervals, t_b_c, s.b_a,
-                                          true, &r));
-    mean_ratio += r.scale / s.scale / 5.0;
-  }
-  EXPECT_LT(mean_ratio, 0.9) << "2 mm of position noise: biased low";
+  const Eigen::Vector3d t_b_c = CameraExtrinsic().translation();
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   Scenario s = MakeScenario(sim, 40, kStride, kFrames, 0.3, Noise(), 1);
-  AlignGyroscopeBias(s.frames, Eigen::Vector3d::Zero(), &s.intervals);
-  VelocityGravityScale r;
-  ASSERT_TRUE(RefineGravity(
-      s.frames, s.intervals, t_b_c, Eigen::Vector3d::Zero(), 9.81, true,
-      (SolveVelocityGravityScale(s.frames, s.intervals, t_b_c,
-                                 Eigen::Vector3d::Zero(), true, &r),
-       &r)));
-  std::printf(
-      "scale ratio with 2 mm position noise %.3f; with b_a unknown "
-      "%.3f\n",
-      mean_ratio, r.scale / s.scale);
-  EXPECT_GT(std::abs(r.scale / s.scale - 1.0), 0.05);
+  AlignGyroscopeBias(s.frames, zero, &s.intervals);
+  VelocityGravityScale held, estimated;
+  ASSERT_TRUE(SolveVelocityGravityScale(s.frames, s.intervals, t_b_c, zero,
+                                        Held(true), &held));
+  ASSERT_TRUE(RefineGravity(s.frames, s.intervals, t_b_c, zero, 9.81,
+                            Held(true), &held));
+  ASSERT_TRUE(SolveVelocityGravityScale(s.frames, s.intervals, t_b_c, zero,
+                                        Estimated(), &estimated));
+  ASSERT_TRUE(RefineGravity(s.frames, s.intervals, t_b_c, zero, 9.81,
+                            Estimated(), &estimated));
+  std::printf("b_a unknown: scale error held %.2f %%, estimated %.2f %%\n",
+              100.0 * (held.scale / s.scale - 1.0),
+              100.0 * (estimated.scale / s.scale - 1.0));
+  EXPECT_GT(std::abs(held.scale / s.scale - 1.0), 0.05);
+  EXPECT_LT(std::abs(estimated.scale / s.scale - 1.0), 0.02);
 }
 
 TEST(VisualInertialAlignment, TooFewFramesOrNoMotionIsRefused) {
   const Simulation sim = Simulate(InMotion(false, 3));
-  Scenario s = MakeScenario(sim, 0, kStride, 1, 1.0, Noise(), 3);
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  Scenario s = MakeScenario(sim, 0, kStride, 2, 1.0, Noise(), 3);
   VelocityGravityScale r;
-  EXPECT_FALSE(SolveVelocityGravityScale(s.frames, s.intervals,
-                                         Eigen::Vector3d::Zero(),
-                                         Eigen::Vector3d::Zero(), true, &r));
+  EXPECT_FALSE(SolveVelocityGravityScale(s.frames, s.intervals, zero, zero,
+                                         Estimated(), &r));
   // A visual trajectory that never moves gives no scale column.
   Scenario still = MakeScenario(sim, 0, kStride, 5, 1.0, Noise(), 3);
   for (AlignmentFrame& f : still.frames) f.p_v_c.setZero();
-  EXPECT_FALSE(SolveVelocityGravityScale(still.frames, still.intervals,
-                                         Eigen::Vector3d::Zero(),
-                                         Eigen::Vector3d::Zero(), true, &r));
+  EXPECT_FALSE(SolveVelocityGravityScale(still.frames, still.intervals, zero,
+                                         zero, Estimated(), &r));
 }
 
 }  // namespace

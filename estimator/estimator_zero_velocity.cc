@@ -1,0 +1,39 @@
+// The estimator's zero-velocity handling (estimator/zero_velocity.h for the
+// detection, factors/zero_motion_factor.h for the constraint).
+
+#include <memory>
+
+#include "estimator/estimator.h"
+#include "factors/zero_motion_factor.h"
+
+namespace vio {
+
+void Estimator::MarkStillness(WindowFrame* newest) {
+  const ZeroVelocityOptions& z = options_.zero_velocity;
+  // Without an image verdict, the speed of the last estimate decides with
+  // the IMU (a constant-velocity flight over a blank wall is not rest).
+  const bool still =
+      z.enabled && zero_velocity_.Check().Still(last_output_.v_w.norm(),
+                                                z.max_speed_without_image_m_s);
+  // Still over the whole interval: at both of its ends. (A longer interval,
+  // merged when the frame between leaves, keeps the link only when both of
+  // its parts had it: Estimator::DropSecondNewest.)
+  newest->still_link = still && newest_still_;
+  newest_still_ = still;
+}
+
+void Estimator::AddZeroVelocityFactors(WindowProblem* problem) const {
+  const ZeroVelocityOptions& z = options_.zero_velocity;
+  const auto& frames = window_.frames;
+  for (size_t k = 1; k < frames.size(); ++k) {
+    WindowFrame& i = *frames[k - 1];
+    WindowFrame& j = *frames[k];
+    if (!j.still_link) continue;
+    problem->AddFrameLink(
+        std::make_unique<ZeroMotionFactor>(
+            z.sigma_position_m, z.sigma_rotation_rad, z.sigma_velocity_m_s),
+        {i.pose.data(), j.pose.data(), j.speed_bias.data()}, i.id);
+  }
+}
+
+}  // namespace vio
