@@ -329,7 +329,7 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
     const EstimatorOutput restart =
         Finite(predicted) ? predicted : last_output_;
     StartWindow(frame, t_imu_ns, restart, options_.state_prior.velocity_moving);
-    newest_still_ = false;
+    newest_still_ = StillNow(restart.v_w.norm());
     // The in-motion initialiser starts over from this frame on.
     if (options_.init.reinitialize_after_reset &&
         options_.init.method != InitMethod::kStatic) {

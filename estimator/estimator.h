@@ -166,6 +166,9 @@ class Estimator {
   // Zero velocity (estimator_zero_velocity.cc): judges the newest frame and
   // adds the zero-motion factors of the window's still intervals.
   void MarkStillness(WindowFrame* newest);
+  // The detector's verdict now, with the estimated speed [m/s] deciding
+  // when the images give none.
+  bool StillNow(double speed_m_s) const;
   void AddZeroVelocityFactors(WindowProblem* problem) const;
   void StartWindow(const FeatureFrame& frame, int64_t t_imu_ns,
                    const EstimatorOutput& state, double velocity_sigma);

@@ -80,7 +80,9 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
     state.b_g = s.b_g;
     StartWindow(FeatureFrame{s.t_ns, s.observations}, s.t_imu_ns, state,
                 options_.state_prior.velocity_still);
-    newest_still_ = false;
+    // Still by the static start's own test (the detector agrees unless its
+    // windows differ): the next frame's interval may be tied to this one.
+    newest_still_ = StillNow(0.0);
     record.window.push_back(StateOf(*window_.frames.back()));
     summary_.starts.push_back(std::move(record));
     return true;
@@ -122,7 +124,7 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   }
   // Every frame of the first window is a keyframe; Slide counted the newest.
   summary_.keyframes += static_cast<int64_t>(n) - 1;
-  newest_still_ = false;
+  newest_still_ = StillNow(window_.frames.back()->v_w_value().norm());
   for (const auto& f : window_.frames) record.window.push_back(StateOf(*f));
   summary_.starts.push_back(std::move(record));
   if (restart) ++summary_.reinitializations;

@@ -8,13 +8,16 @@
 
 namespace vio {
 
-void Estimator::MarkStillness(WindowFrame* newest) {
-  const ZeroVelocityOptions& z = options_.zero_velocity;
+bool Estimator::StillNow(double speed_m_s) const {
   // Without an image verdict, the speed of the last estimate decides with
   // the IMU (a constant-velocity flight over a blank wall is not rest).
-  const bool still =
-      z.enabled && zero_velocity_.Check().Still(last_output_.v_w.norm(),
-                                                z.max_speed_without_image_m_s);
+  const ZeroVelocityOptions& z = options_.zero_velocity;
+  return z.enabled &&
+         zero_velocity_.Check().Still(speed_m_s, z.max_speed_without_image_m_s);
+}
+
+void Estimator::MarkStillness(WindowFrame* newest) {
+  const bool still = StillNow(last_output_.v_w.norm());
   // Still over the whole interval: at both of its ends. (A longer interval,
   // merged when the frame between leaves, keeps the link only when both of
   // its parts had it: Estimator::DropSecondNewest.)
