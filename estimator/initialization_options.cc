@@ -66,9 +66,11 @@ bool ParseInitMethod(const std::string& name, InitMethod* method) {
 
 bool InitOptions::Validate(bool stereo_available, int window_size,
                            std::string* message) const {
+  if (method == InitMethod::kStereo && !stereo_available) {
+    *message = "init.method stereo needs use_stereo: true";
+    return false;
+  }
   Rules r;
-  r.Require(method != InitMethod::kStereo || stereo_available, "init.method", 0,
-            "stereo needs use_stereo: true");
   r.Positive("init.mono.window_s", mono.window_s);
   r.AtLeast("init.mono.max_frames", mono.max_frames, 3);
   r.Require(mono.max_frames <= window_size + 1, "init.mono.max_frames",
