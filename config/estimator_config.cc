@@ -123,6 +123,7 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
   o->failure.max_gyro_bias = f.Get<double>("max_gyro_bias");
   o->failure.max_position_jump_m = f.Get<double>("max_position_jump_m");
   o->failure.max_rotation_jump_deg = f.Get<double>("max_rotation_jump_deg");
+  o->failure.max_speed_m_s = f.Get<double>("max_speed_m_s");
   ReadSolver(e.Child("solver"), &o->solver);
   ReadInit(e.Child("init"), &o->init);
   ReadZeroVelocity(e.Child("zero_velocity"), &o->zero_velocity);
@@ -171,7 +172,11 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
               : std::string())
       << ", re-start after a reset "
       << (o.init.reinitialize_after_reset ? "on" : "off") << "; zero velocity "
-      << (o.zero_velocity.enabled ? "on" : "off") << "\n";
+      << (o.zero_velocity.enabled ? "on" : "off") << "\n"
+      << "  imu stream: " << o.imu_stream.rate_hz << " Hz, range +-"
+      << o.imu_stream.range.accelerometer_range << " m/s^2, +-"
+      << o.imu_stream.range.gyroscope_range << " rad/s; speed limit "
+      << o.failure.max_speed_m_s << " m/s\n";
   return out.str();
 }
 

@@ -17,7 +17,9 @@ bool Estimator::StillNow(double speed_m_s) const {
 }
 
 void Estimator::MarkStillness(WindowFrame* newest) {
-  const bool still = StillNow(last_output_.v_w.norm());
+  // Across an IMU gap (a visual link, no preintegration) the IMU window
+  // holds only samples from before the gap: no verdict.
+  const bool still = newest->imu && StillNow(last_output_.v_w.norm());
   // Still over the whole interval: at both of its ends. (A longer interval,
   // merged when the frame between leaves, keeps the link only when both of
   // its parts had it: Estimator::DropSecondNewest.)
