@@ -24,6 +24,11 @@ void Estimator::MarkStillness(WindowFrame* newest) {
   // merged when the frame between leaves, keeps the link only when both of
   // its parts had it: Estimator::DropSecondNewest.)
   newest->still_link = still && newest_still_;
+  // The first still frame after motion is kept as a keyframe: the frames
+  // after it merge into one interval starting there, and a merged interval
+  // is held only when all of it was still, so an interval reaching back
+  // into the motion (or to an in-motion start) would never be held.
+  if (still && !newest_still_) newest->keyframe = true;
   newest_still_ = still;
 }
 
