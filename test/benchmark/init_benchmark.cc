@@ -121,15 +121,7 @@ struct Trial {
 Trial RunTrial(const SimulatorOptions& sim_options) {
   const Simulation sim = Simulate(sim_options);
   const testing::PreparedSimulation prepared = testing::Prepare(sim);
-  EstimatorOptions options = testing::OptionsFor(sim_options);
-  if (getenv("SU"))
-    options.init.mono.max_scale_uncertainty = atof(getenv("SU"));
-  if (getenv("RSC")) options.init.max_refine_scale_change = atof(getenv("RSC"));
-  if (getenv("WIN")) options.init.mono.window_s = atof(getenv("WIN"));
-  if (getenv("SPAN")) options.init.mono.min_span_s = atof(getenv("SPAN"));
-
-  if (getenv("RIT")) options.init.refine_iterations = atoi(getenv("RIT"));
-
+  const EstimatorOptions options = testing::OptionsFor(sim_options);
   Estimator estimator(options, VisualFactorOptions(), sim_options.imu.noise,
                       PreintegrationOptions(), prepared.cameras);
   // Feed until the first start.
@@ -190,8 +182,6 @@ void StartFigures(const std::string& preset, const Args& args) {
     o.motion.start_phase_s =
         base.motion.start_phase_s + k * base.motion.lap_period_s / args.seeds;
     o.duration_s = args.seconds;
-    if (getenv("NOPIX")) o.camera.pixel_noise_px = 0.0;
-    if (getenv("NOIMU")) o.imu.add_noise = false;
     const Trial t = RunTrial(o);
     if (args.verbose) {
       std::printf("  seed %u phase %.2f s: %s", o.seed, o.motion.start_phase_s,
