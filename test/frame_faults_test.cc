@@ -86,6 +86,11 @@ TEST(WithFrameFault, EmptyFramesTakeTheirShareOfTheSpanOnly) {
   EXPECT_EQ(Stamps(WithFrameFault(Frames(), fault, kStart)), stamps);
   fault.seed = 2;
   EXPECT_NE(Stamps(WithFrameFault(Frames(), fault, kStart)), stamps);
+  // Twice the share, twice the frames: 36 expected, sd 3.8.
+  fault.fraction = 0.6;
+  const size_t kept = WithFrameFault(Frames(), fault, kStart).size();
+  EXPECT_GE(100 - static_cast<int>(kept), 28);
+  EXPECT_LE(100 - static_cast<int>(kept), 44);
 }
 
 TEST(WithFrameFault, OutliersMoveTheirShareOfObservationsInsideTheImage) {
