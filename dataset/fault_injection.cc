@@ -58,7 +58,23 @@ std::string ImuFault::Describe() const {
                     value, count, t_s);
       break;
     case ImuFaultKind::kRepeat:
-      std::snprintf(buffer, sizeof(buffer), "IMU line repeated at %.3f s", t_s);
+      std::snprintf(buffer, sizeof(buffer),
+                    "%d IMU line(s) each repeated at %.3f s", count, t_s);
+      break;
+    case ImuFaultKind::kSaturate:
+      std::snprintf(buffer, sizeof(buffer),
+                    "accelerometer clipped to +-%g m/s^2 in %d sample(s) at "
+                    "%.3f s",
+                    value, count, t_s);
+      break;
+    case ImuFaultKind::kAccelStep:
+      std::snprintf(buffer, sizeof(buffer),
+                    "accelerometer x bias jump of %g m/s^2 at %.3f s", value,
+                    t_s);
+      break;
+    case ImuFaultKind::kGyroStep:
+      std::snprintf(buffer, sizeof(buffer),
+                    "gyroscope x bias jump of %g rad/s at %.3f s", value, t_s);
       break;
     case ImuFaultKind::kBackwards:
       std::snprintf(buffer, sizeof(buffer),
@@ -70,13 +86,20 @@ std::string ImuFault::Describe() const {
 
 namespace {
 
+bool IsStep(ImuFaultKind kind) {
+  return kind == ImuFaultKind::kAccelStep || kind == ImuFaultKind::kGyroStep;
+}
+
 // The first sample the fault touches, after checking that it fits.
 size_t FaultStart(const std::vector<ImuSample>& imu, const ImuFault& fault) {
   if (fault.count < 1) throw std::invalid_argument("fault: count < 1");
+  if (fault.kind == ImuFaultKind::kSaturate && !(fault.value > 0)) {
+    throw std::invalid_argument("fault: a saturation limit must be > 0");
+  }
   const size_t k = FirstAtOrAfter(imu, fault.t_s);
   // Samples the fault needs from k on (kBackwards: the sample and count more).
   size_t needed = static_cast<size_t>(fault.count);
-  if (fault.kind == ImuFaultKind::kRepeat) needed = 1;
+  if (IsStep(fault.kind)) needed = 1;
   if (fault.kind == ImuFaultKind::kBackwards) needed += 1;
   if (k + needed > imu.size()) {
     throw std::invalid_argument("fault: " + fault.Describe() +
@@ -96,10 +119,18 @@ void Apply(const ImuFault& fault, size_t k, std::vector<T>* items, Set set) {
       break;
     case ImuFaultKind::kGyroValue:
     case ImuFaultKind::kAccelValue:
+    case ImuFaultKind::kSaturate:
       for (size_t i = k; i < k + n; ++i) set(&(*items)[i]);
       break;
+    case ImuFaultKind::kAccelStep:
+    case ImuFaultKind::kGyroStep:
+      for (size_t i = k; i < items->size(); ++i) set(&(*items)[i]);
+      break;
     case ImuFaultKind::kRepeat:
-      items->insert(items->begin() + k + 1, (*items)[k]);
+      // From the last to the first, so that k's indices stay valid.
+      for (size_t i = k + n; i-- > k;) {
+        items->insert(items->begin() + i + 1, (*items)[i]);
+      }
       break;
     case ImuFaultKind::kBackwards:
       std::rotate(items->begin() + k, items->begin() + k + 1,
@@ -109,8 +140,27 @@ void Apply(const ImuFault& fault, size_t k, std::vector<T>* items, Set set) {
 }
 
 void SetValue(const ImuFault& fault, ImuSample* s) {
-  if (fault.kind == ImuFaultKind::kGyroValue) s->gyr.x() = fault.value;
-  if (fault.kind == ImuFaultKind::kAccelValue) s->acc.x() = fault.value;
+  switch (fault.kind) {
+    case ImuFaultKind::kGyroValue:
+      s->gyr.x() = fault.value;
+      break;
+    case ImuFaultKind::kAccelValue:
+      s->acc.x() = fault.value;
+      break;
+    case ImuFaultKind::kSaturate:
+      s->acc = s->acc.cwiseMin(fault.value).cwiseMax(-fault.value);
+      break;
+    case ImuFaultKind::kAccelStep:
+      s->acc.x() += fault.value;
+      break;
+    case ImuFaultKind::kGyroStep:
+      s->gyr.x() += fault.value;
+      break;
+    case ImuFaultKind::kDrop:
+    case ImuFaultKind::kRepeat:
+    case ImuFaultKind::kBackwards:
+      break;
+  }
 }
 
 }  // namespace

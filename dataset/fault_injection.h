@@ -23,15 +23,24 @@ enum class ImuFaultKind {
   kDrop,        // `count` samples missing (a gap)
   kGyroValue,   // gyroscope x of `count` samples set to `value` [rad/s]
   kAccelValue,  // accelerometer x of `count` samples set to `value` [m/s^2]
-  kRepeat,      // one sample (line) repeated exactly, right after itself
+  kRepeat,      // `count` samples (lines) each repeated exactly, right
+                // after itself
   kBackwards,   // one sample moved `count` places later: out of order
+  kSaturate,    // accelerometer of `count` samples clipped to +-`value` per
+                // axis [m/s^2], as a sensor past its measuring range reads
+  kAccelStep,   // accelerometer x of every sample from t_s on raised by
+                // `value` [m/s^2] (a bias jump; `count` unused)
+  kGyroStep,    // gyroscope x of every sample from t_s on raised by `value`
+                // [rad/s] (a bias jump; `count` unused)
 };
 
 struct ImuFault {
   ImuFaultKind kind = ImuFaultKind::kDrop;
-  double t_s = 0.0;    // where [s after the first sample]
-  int count = 1;       // samples affected [-]
-  double value = 0.0;  // kGyroValue [rad/s], kAccelValue [m/s^2]
+  double t_s = 0.0;  // where [s after the first sample]
+  int count = 1;     // samples affected [-]
+  // kGyroValue, kGyroStep [rad/s]; kAccelValue, kAccelStep, kSaturate
+  // [m/s^2]. A NaN value gives NaN samples.
+  double value = 0.0;
 
   // "5 IMU samples dropped at 4.900 s" and the like.
   std::string Describe() const;

@@ -7,8 +7,10 @@
 namespace vio {
 namespace {
 
+// Strictly inside: a reading at full scale is a saturated one (the true value
+// is the range or beyond it, nobody knows how far), not a measurement.
 bool Within(const Eigen::Vector3d& v, double range) {
-  return v.allFinite() && v.cwiseAbs().maxCoeff() <= range;
+  return v.allFinite() && v.cwiseAbs().maxCoeff() < range;
 }
 
 }  // namespace

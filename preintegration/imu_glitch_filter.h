@@ -34,7 +34,9 @@ struct ImuRange {
   // starts with the offending field's name.
   bool Validate(std::string* message) const;
 
-  // True when every value of the sample is finite and within the range.
+  // True when every value of the sample is finite and strictly within the
+  // range: a value at full scale (|a| = accelerometer_range) is a saturated
+  // reading and treated as outside it.
   bool Contains(const ImuSample& sample) const;
 };
 

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -119,6 +121,73 @@ TEST(WithImuFaultInCsv, EditsLinesAsSedWould) {
   EXPECT_THROW(
       WithImuFaultInCsv("#h\n12,abc\n", Fault(ImuFaultKind::kDrop, 0.0, 1)),
       std::invalid_argument);
+}
+
+// The faults of a fault-injection replay (tools/vio_faults): several lines
+// repeated, NaN samples, a saturated accelerometer, bias jumps.
+TEST(WithImuFault, RepeatsEachOfCountLines) {
+  const std::vector<ImuSample> clean = Stream();
+  const std::vector<ImuSample> f =
+      WithImuFault(clean, Fault(ImuFaultKind::kRepeat, 0.012, 3));
+  ASSERT_EQ(f.size(), 23u);
+  // 0 1 2 3 3 4 4 5 5 6 ...
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(f[i].gyr.x(), i);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(f[3 + 2 * i].gyr.x(), 3 + i) << i;
+    EXPECT_EQ(f[4 + 2 * i].gyr.x(), 3 + i) << i;
+    EXPECT_EQ(f[4 + 2 * i].t_ns, f[3 + 2 * i].t_ns) << i;
+  }
+  EXPECT_EQ(f[9].gyr.x(), 6);
+  EXPECT_EQ(f.back().gyr.x(), 19);
+}
+
+TEST(WithImuFault, NanSamplesAreWrittenAsNan) {
+  const ImuFault nan = Fault(ImuFaultKind::kGyroValue, 0.012, 2,
+                             std::numeric_limits<double>::quiet_NaN());
+  const std::vector<ImuSample> f = WithImuFault(Stream(), nan);
+  EXPECT_TRUE(std::isnan(f[3].gyr.x()));
+  EXPECT_TRUE(std::isnan(f[4].gyr.x()));
+  EXPECT_EQ(f[5].gyr.x(), 5);
+  EXPECT_EQ(f[3].gyr.y(), 0.5);
+  // In the file the reader refuses: the text "nan".
+  const std::string csv =
+      "#h\n1000000000,1,2,3,4,5,6\n1005000000,1,2,3,4,5,6\n";
+  EXPECT_EQ(
+      WithImuFaultInCsv(csv, Fault(ImuFaultKind::kGyroValue, 0.005, 1,
+                                   std::numeric_limits<double>::quiet_NaN())),
+      "#h\n1000000000,1,2,3,4,5,6\n1005000000,nan,2,3,4,5,6\n");
+}
+
+TEST(WithImuFault, SaturationClipsEveryAccelerometerAxis) {
+  std::vector<ImuSample> clean = Stream();
+  for (ImuSample& s : clean) s.acc = Eigen::Vector3d(12.0, -15.0, 4.0);
+  const std::vector<ImuSample> f =
+      WithImuFault(clean, Fault(ImuFaultKind::kSaturate, 0.012, 2, 10.0));
+  EXPECT_EQ(f[2].acc, Eigen::Vector3d(12.0, -15.0, 4.0));
+  EXPECT_EQ(f[3].acc, Eigen::Vector3d(10.0, -10.0, 4.0));
+  EXPECT_EQ(f[4].acc, Eigen::Vector3d(10.0, -10.0, 4.0));
+  EXPECT_EQ(f[5].acc, Eigen::Vector3d(12.0, -15.0, 4.0));
+  EXPECT_EQ(f[3].gyr, clean[3].gyr);
+  EXPECT_THROW(WithImuFault(clean, Fault(ImuFaultKind::kSaturate, 0.0, 1, 0)),
+               std::invalid_argument);
+}
+
+TEST(WithImuFault, ABiasJumpLastsToTheEnd) {
+  const std::vector<ImuSample> clean = Stream();
+  std::vector<ImuSample> f =
+      WithImuFault(clean, Fault(ImuFaultKind::kAccelStep, 0.012, 1, 0.25));
+  ASSERT_EQ(f.size(), clean.size());
+  for (size_t i = 0; i < f.size(); ++i) {
+    EXPECT_EQ(f[i].acc.x(), clean[i].acc.x() + (i >= 3 ? 0.25 : 0.0)) << i;
+    EXPECT_EQ(f[i].acc.y(), clean[i].acc.y()) << i;
+    EXPECT_EQ(f[i].gyr, clean[i].gyr) << i;
+  }
+  f = WithImuFault(clean, Fault(ImuFaultKind::kGyroStep, 0.012, 1, -0.02));
+  for (size_t i = 0; i < f.size(); ++i) {
+    EXPECT_EQ(f[i].gyr.x(), clean[i].gyr.x() + (i >= 3 ? -0.02 : 0.0)) << i;
+    EXPECT_EQ(f[i].gyr.y(), clean[i].gyr.y()) << i;
+    EXPECT_EQ(f[i].acc, clean[i].acc) << i;
+  }
 }
 
 TEST(SetObservationPixels, CorruptsTheFirstObservationsOfOneFrame) {

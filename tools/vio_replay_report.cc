@@ -172,6 +172,14 @@ void Evaluate(const std::string& dir, const Trajectory& estimate,
   Trajectory truth;
   for (const StampedState& s : ground_truth) truth.push_back(PoseOf(s));
   const Association a = Associate(estimate, truth);
+  if (a.size() < 2) {
+    // No alignment from fewer than two poses; the exit status says why.
+    std::printf(
+        "  ATE (posyaw)  n/a (%zu of %zu frames with a pose at a "
+        "ground-truth stamp)\n",
+        a.size(), frames);
+    return;
+  }
   const Alignment alignment =
       Align(a.estimate, a.ground_truth, AlignmentMode::kPosYaw);
   const Trajectory aligned = alignment.Apply(a.estimate);
