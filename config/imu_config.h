@@ -4,6 +4,7 @@
 // The `imu:` block of a configuration file (config/default.yaml):
 //
 //   imu:
+//     noise_from: config                    # config | sequence (below)
 //     rate_hz: 200                          # nominal sample rate [Hz]
 //     accelerometer_noise_density: 2.0e-3   # [m/s^2/sqrt(Hz)]   (Kalibr names
 //     gyroscope_noise_density: 1.6968e-4    # [rad/s/sqrt(Hz)]    and units,
@@ -13,6 +14,12 @@
 //     max_sample_gap: 0.02                  # [s]
 //     repropagate_acc_bias_change: 0.1      # [m/s^2]
 //     repropagate_gyr_bias_change: 0.01     # [rad/s]
+//
+// noise_from says which noise densities the estimator assumes: `config`, the
+// four keys of this block (they win: a user tunes them for the vehicle, as
+// VINS-Mono, OKVIS and Basalt users do); `sequence`, those of the replayed
+// folder's mav0/imu0/sensor.yaml (the four keys are then read and validated
+// but not used). Tools may override it (vio_replay --imu-noise).
 //
 // Every key is required. A missing key, a wrong type or an out-of-range value
 // is a ConfigError naming the file and the key, e.g.
@@ -25,7 +32,14 @@
 
 namespace vio {
 
+// Where the estimator's IMU noise densities come from.
+enum class ImuNoiseSource {
+  kConfig,    // the imu: block's four keys
+  kSequence,  // the replayed sequence's imu0/sensor.yaml
+};
+
 struct ImuConfig {
+  ImuNoiseSource noise_from = ImuNoiseSource::kConfig;
   ImuNoise noise;
   PreintegrationOptions preintegration;
   double rate_hz = 200.0;           // nominal sample rate [Hz]
@@ -48,6 +62,10 @@ ImuConfig LoadImuConfig(const YamlNode& root);
 // presets hold them. Throws ConfigError for a missing or non-numeric key; the
 // caller validates (ValidateAt), so that its message names its own block.
 ImuNoise ReadImuNoise(const YamlNode& node);
+
+// "config" / "sequence" <-> ImuNoiseSource; false for any other name.
+bool ParseImuNoiseSource(const std::string& name, ImuNoiseSource* source);
+const char* ImuNoiseSourceName(ImuNoiseSource source);
 
 }  // namespace vio
 

@@ -12,6 +12,7 @@ using ::testing::HasSubstr;
 
 const char kBlock[] = R"(
 imu:
+  noise_from: config
   rate_hz: 200
   accelerometer_noise_density: 2.0e-3
   gyroscope_noise_density: 1.6968e-4
@@ -57,6 +58,22 @@ TEST(ImuConfig, DefaultYamlHoldsEurocAdis16448Values) {
   EXPECT_DOUBLE_EQ(c.preintegration.max_sample_gap, 0.02);
   EXPECT_DOUBLE_EQ(c.preintegration.repropagate_acc_bias_change, 0.1);
   EXPECT_DOUBLE_EQ(c.preintegration.repropagate_gyr_bias_change, 0.01);
+  EXPECT_EQ(c.noise_from, ImuNoiseSource::kConfig);
+}
+
+TEST(ImuConfig, NoiseCanComeFromTheSequence) {
+  const ImuConfig c = LoadImuConfig(
+      YamlNode::LoadString(With("noise_from", "sequence"), "mem.yaml"));
+  EXPECT_EQ(c.noise_from, ImuNoiseSource::kSequence);
+  EXPECT_STREQ(ImuNoiseSourceName(c.noise_from), "sequence");
+}
+
+TEST(ImuConfig, UnknownNoiseSourceNamesFileAndKey) {
+  EXPECT_EQ(ErrorOf(With("noise_from", "datasheet")),
+            "mem.yaml: imu.noise_from must be config or sequence (got "
+            "'datasheet')");
+  EXPECT_EQ(ErrorOf(With("noise_from", "")),
+            "mem.yaml: imu.noise_from is missing");
 }
 
 TEST(ImuConfig, NegativeNoiseDensityNamesFileAndKey) {
