@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "estimator/marginalization.h"
+#include "estimator/pose_covariance.h"
 #include "estimator/state_prior.h"
 #include "estimator/window_problem.h"
 #include "preintegration/imu_preintegration.h"
@@ -427,6 +428,19 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
   summary_.marginalization_time_s.push_back(
       Seconds(std::chrono::steady_clock::now() - start));
   summary_.marginalization_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
+}
+
+bool Estimator::NewestPoseCovariance(Eigen::Matrix<double, 6, 6>* covariance) {
+  if (!initialized_ || window_.frames.empty()) return false;
+  WindowProblem problem(&window_, &features_, ProblemSettings());
+  if (prior_) problem.AddPrior(prior_.get(), prior_blocks_);
+  if (extrinsic_prior_) {
+    problem.AddPrior(extrinsic_prior_.get(), extrinsic_prior_blocks_);
+  }
+  if (!problem.AddImuFactors()) return false;
+  problem.AddVisualFactors();
+  return PoseCovariance(problem.mutable_problem(),
+                        window_.frames.back()->pose.data(), covariance);
 }
 
 void Estimator::UpdateImuLinearization() {

@@ -122,6 +122,14 @@ class Estimator {
   // bad data.
   EstimatorOutput AddFrame(const FeatureFrame& frame);
 
+  // The covariance of the newest pose, tangent [dt (world, m), dtheta (body,
+  // rad)], from the window's information at the current estimate: the
+  // window's problem (prior, IMU and visual factors) is rebuilt and handed
+  // to estimator/pose_covariance.h. False before initialisation or when the
+  // information is singular. It costs about one solver step: call it only
+  // when the covariance is wanted.
+  bool NewestPoseCovariance(Eigen::Matrix<double, 6, 6>* covariance);
+
   const EstimatorSummary& summary() const { return summary_; }
   const EstimatorOptions& options() const { return options_; }
   bool initialized() const { return initialized_; }

@@ -97,6 +97,9 @@ class WindowProblem {
   MarginalizationProblem OldestFrameMarginalization(
       const OutlierReport& excluded) const;
 
+  // The problem as built (for estimator/pose_covariance.h).
+  ceres::Problem* mutable_problem() { return &problem_; }
+
   int num_visual_residuals() const { return num_visual_; }
   int landmarks_used() const { return landmarks_used_; }
 
