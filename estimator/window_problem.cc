@@ -164,6 +164,19 @@ void WindowProblem::AddLandmark(Landmark* l) {
       } else if (s.camera == 0) {
         r.owned = std::make_unique<ReprojectionFactor>(a.xy, s.xy, sqrt_info);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, rho};
+      } else if (settings_.estimate_time_offset) {
+        // Camera 1 of frame j saw the point at the same instant as its
+        // camera 0: shifted along camera 1's predicted image velocity.
+        const WindowFrame& frame_j = *window_->Find(s.frame_id);
+        const Eigen::Vector3d p_c1_j = window_->T_w_c(s.frame_id, 1).inverse() *
+                                       window_->T_w_c(a.frame_id, 0) * p_c_i;
+        r.owned = std::make_unique<TimedStereoTwoFrameReprojectionFactor>(
+            TimedObservation{a.xy, velocity_i, frame_i->t_d_at_stamp},
+            TimedObservation{s.xy, MotionVelocity(frame_j, p_c1_j, 1),
+                             frame_j.t_d_at_stamp},
+            sqrt_info);
+        r.blocks = {frame_i->pose.data(), pose_j, ext0, ext1, rho,
+                    &window_->t_d};
       } else {
         r.owned = std::make_unique<StereoTwoFrameReprojectionFactor>(a.xy, s.xy,
                                                                      sqrt_info);
@@ -176,13 +189,14 @@ void WindowProblem::AddLandmark(Landmark* l) {
   }
 }
 
-Eigen::Vector2d WindowProblem::MotionVelocity(
-    const WindowFrame& frame, const Eigen::Vector3d& p_c) const {
+Eigen::Vector2d WindowProblem::MotionVelocity(const WindowFrame& frame,
+                                              const Eigen::Vector3d& p_c,
+                                              int camera) const {
   // The current estimates (velocity, gyroscope bias, depth), not the
   // tracker's finite difference: see estimator/image_velocity.h.
   return PredictedImageVelocity(p_c, frame.T_w_b(), frame.v_w_value(),
                                 frame.gyr_b - frame.b_g_value(),
-                                window_->T_b_c(0));
+                                window_->T_b_c(camera));
 }
 
 ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {

@@ -18,6 +18,8 @@
 //                   time offset is estimated)
 //   j != i, c == 1: StereoTwoFrameReprojectionFactor
 //                   blocks pose_i, pose_j, T_b_c0, T_b_c1, rho
+//                   (TimedStereoTwoFrameReprojectionFactor, with t_d after
+//                   rho, when the time offset is estimated)
 // Sightings older than the anchor (camera 1 only) are not used, so only the
 // landmarks anchored in a frame have residuals touching that frame: the
 // marginalisation of the oldest frame then removes exactly those landmarks,
@@ -46,8 +48,9 @@ struct WindowProblemSettings {
   VisualFactorOptions visual;
   double gravity_magnitude = 9.81;  // [m/s^2]
   bool estimate_extrinsics = false;
-  // Camera-0 factors between frames become TimedReprojectionFactors on the
-  // window's t_d block; camera-1 factors stay untimed.
+  // Factors between frames become timed (TimedReprojectionFactor,
+  // TimedStereoTwoFrameReprojectionFactor) on the window's t_d block; the
+  // same-frame stereo factor needs no shift (both cameras, one instant).
   bool estimate_time_offset = false;
   double max_time_offset_s = 0.02;  // |t_d| bound while estimated [s]
   int max_landmarks = 120;
@@ -125,10 +128,11 @@ class WindowProblem {
   void AddBlock(double* values, int size, bool pose, bool constant);
   void AddResidual(Residual residual);
   void AddLandmark(Landmark* landmark);
-  // Image velocity d xy / dt [1/s] of the camera-0 point p_c [m] in frame,
-  // predicted from the frame's current state (TimedReprojectionFactor).
+  // Image velocity d xy / dt [1/s] of the point p_c [m] in `camera` of
+  // frame, predicted from the frame's current state (the timed factors).
   Eigen::Vector2d MotionVelocity(const WindowFrame& frame,
-                                 const Eigen::Vector3d& p_c) const;
+                                 const Eigen::Vector3d& p_c,
+                                 int camera = 0) const;
 
   Window* window_;
   FeatureManager* features_;
