@@ -374,6 +374,9 @@ void Estimator::Slide(const WindowProblem& problem) {
   // landmark they refer to is removed.
   if (marginalize) MarginalizeOldest(problem, outliers);
   for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
+  for (int64_t id : outliers.behind) features_.RemoveLandmark(id);
+  summary_.landmarks_behind_removed +=
+      static_cast<int64_t>(outliers.behind.size());
   for (const OutlierReport::BadSighting& b : outliers.sightings) {
     features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
   }

@@ -85,6 +85,7 @@ struct EstimatorSummary {
   int64_t landmarks_triangulated = 0;
   int64_t outlier_landmarks_removed = 0;  // most of their sightings bad
   int64_t outlier_sightings_removed = 0;  // single sightings, landmark kept
+  int64_t landmarks_behind_removed = 0;   // inverse depth <= 0 after a solve
   int64_t marginalizations = 0;
   int64_t marginalization_failures = 0;  // prior replaced by a fresh one
   int64_t solver_failures = 0;           // Ceres reported failure

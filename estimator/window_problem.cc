@@ -220,6 +220,9 @@ bool OutlierReport::Involves(int64_t feature_id) const {
   for (int64_t id : landmarks) {
     if (id == feature_id) return true;
   }
+  for (int64_t id : behind) {
+    if (id == feature_id) return true;
+  }
   for (const BadSighting& s : sightings) {
     if (s.feature_id == feature_id) return true;
   }
@@ -249,7 +252,9 @@ OutlierReport WindowProblem::Outliers(double threshold_px) const {
     const bool last = k + 1 == residuals_.size() ||
                       residuals_[k + 1].feature_id != r.feature_id;
     if (!last) continue;
-    if (failed || 2 * static_cast<int>(bad.size()) > total) {
+    if (!(*r.rho > 0.0)) {
+      report.behind.push_back(r.feature_id);
+    } else if (failed || 2 * static_cast<int>(bad.size()) > total) {
       report.landmarks.push_back(r.feature_id);
     } else {
       report.sightings.insert(report.sightings.end(), bad.begin(), bad.end());

@@ -65,6 +65,11 @@ struct OutlierReport {
   };
   std::vector<int64_t> landmarks;      // to remove whole, by feature id
   std::vector<BadSighting> sightings;  // to remove, their landmark kept
+  // Landmarks whose inverse depth is not positive after the solve: the point
+  // lies behind its anchor camera (or at infinity on the wrong side), where
+  // the residuals keep pulling on the poses through a projective depth that
+  // still looks valid. To remove whole, counted apart from the outliers.
+  std::vector<int64_t> behind;
   bool Involves(int64_t feature_id) const;
 };
 
@@ -90,7 +95,8 @@ class WindowProblem {
 
   // Sightings whose reprojection error at the current values exceeds
   // threshold_px [px]. A landmark where most of its residuals are bad (its
-  // anchor is the likely culprit) or one fails to evaluate is listed whole.
+  // anchor is the likely culprit) or one fails to evaluate is listed whole;
+  // one with inverse depth <= 0 is listed in `behind`.
   OutlierReport Outliers(double threshold_px) const;
 
   // The marginalisation of the oldest window frame: its IMU factor, the prior
