@@ -21,6 +21,7 @@
 #include "estimator/estimator.h"
 #include "eval/nees.h"
 #include "frontend/observation_builder.h"
+#include "geometry/so3.h"
 #include "tools/command_line.h"
 
 namespace {
@@ -46,7 +47,10 @@ constexpr char kUsage[] =
     "                  imu.noise_from: sequence takes the preset's noise\n"
     "  --seeds N       runs (default 20)\n"
     "  --first-seed S  (default 1)\n"
-    "  --every K       frames between covariance evaluations (default 10)\n";
+    "  --every K       frames between covariance evaluations (default 10)\n"
+    "  --trace         also print every evaluation: seed, time [s], position\n"
+    "                  error [m], its claimed std sqrt(trace P_p) [m], yaw\n"
+    "                  error and std [deg], NEES of the pose\n";
 
 struct Args {
   std::string preset;
@@ -54,6 +58,7 @@ struct Args {
   int seeds = 20;
   int first_seed = 1;
   int every = 10;
+  bool trace = false;
   bool help = false;
 };
 
@@ -82,6 +87,8 @@ Args ParseArgs(int argc, char** argv) {
       args.first_seed = ParseInt(flag, line.Value(), 0);
     } else if (flag == "--every") {
       args.every = ParseInt(flag, line.Value(), 1);
+    } else if (flag == "--trace") {
+      args.trace = true;
     } else if (flag == "--help" || flag == "-h") {
       args.help = true;
     } else {
@@ -147,7 +154,7 @@ StampedPose TruthAt(const Simulation& sim, int64_t t_ns) {
 
 // One seed: the run's NEES sums and its ATE (aligned by the gauge only).
 NeesSum RunSeed(const SimulatorOptions& preset, const Config& config, int every,
-                double* gauge_rmse, int64_t* resets) {
+                bool trace, double* gauge_rmse, int64_t* resets) {
   const Simulation sim = Simulate(preset);
   const SimCameraOptions& cam = preset.camera;
   const int used = config.estimator.use_stereo ? 2 : 1;
@@ -207,7 +214,21 @@ NeesSum RunSeed(const SimulatorOptions& preset, const Config& config, int every,
     since = 0;
     Eigen::Matrix<double, 6, 6> covariance;
     if (!estimator.NewestPoseCovariance(&covariance)) continue;
-    sum.Add(ComputePoseNees(estimate, truth, covariance));
+    const PoseNees n = ComputePoseNees(estimate, truth, covariance);
+    sum.Add(n);
+    if (trace) {
+      const Eigen::Vector3d u =
+          estimate.q_w_b.conjugate() * Eigen::Vector3d::UnitZ();
+      const double yaw_error =
+          u.dot(Log(truth.q_w_b.conjugate() * estimate.q_w_b));
+      const double yaw_sigma =
+          std::sqrt(u.dot(covariance.bottomRightCorner<3, 3>() * u));
+      std::printf("trace %u %.2f %.4f %.4f %.3f %.3f %.2f\n", preset.seed,
+                  static_cast<double>(t_imu - sim.imu.front().t_ns) * 1e-9,
+                  (estimate.p_w_b - truth.p_w_b).norm(),
+                  std::sqrt(covariance.topLeftCorner<3, 3>().trace()),
+                  yaw_error * 180.0 / M_PI, yaw_sigma * 180.0 / M_PI, n.pose);
+    }
   }
   *gauge_rmse = poses > 0 ? std::sqrt(squared / poses) : 0.0;
   *resets = estimator.summary().resets;
@@ -238,7 +259,8 @@ int main(int argc, char** argv) {
       preset.seed = static_cast<uint32_t>(s);
       double rmse = 0.0;
       int64_t resets = 0;
-      const NeesSum sum = RunSeed(preset, config, args.every, &rmse, &resets);
+      const NeesSum sum =
+          RunSeed(preset, config, args.every, args.trace, &rmse, &resets);
       sum.Print(std::to_string(s).c_str());
       std::printf("  %20.4f  %6lld\n", rmse, static_cast<long long>(resets));
       std::fflush(stdout);
