@@ -60,6 +60,12 @@ const char* ImuNoiseSourceName(ImuNoiseSource source) {
   return source == ImuNoiseSource::kConfig ? "config" : "sequence";
 }
 
+void ApplyImuConfig(const ImuConfig& imu, EstimatorOptions* options) {
+  options->gravity_magnitude = imu.gravity_magnitude;
+  options->imu_stream.rate_hz = imu.rate_hz;
+  options->imu_stream.range = imu.range;
+}
+
 ImuConfig LoadImuConfig(const YamlNode& root) {
   const YamlNode imu = root.Child("imu");
   ImuConfig c;
@@ -76,9 +82,12 @@ ImuConfig LoadImuConfig(const YamlNode& root) {
       imu.Get<double>("repropagate_acc_bias_change");
   c.preintegration.repropagate_gyr_bias_change =
       imu.Get<double>("repropagate_gyr_bias_change");
+  c.range.accelerometer_range = imu.Get<double>("accelerometer_range");
+  c.range.gyroscope_range = imu.Get<double>("gyroscope_range");
   // The module's own checks first, so each message names its field.
   ValidateAt(imu, c.noise);
   ValidateAt(imu, c.preintegration);
+  ValidateAt(imu, c.range);
   ValidateAt(imu, c);
   return c;
 }
