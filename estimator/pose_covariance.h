@@ -13,7 +13,7 @@
 //
 // Used to check consistency: over many runs, the NEES e^T P^-1 e of the
 // error e against the truth should average the dimension (6) when P is
-// honest (docs/accuracy.md, tools/vio_nees).
+// honest (docs/recorded_flights.md, tools/vio_nees).
 
 #include <ceres/problem.h>
 

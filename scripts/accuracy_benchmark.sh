@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The accuracy benchmark (docs/accuracy.md): replays every simulated preset
+# The accuracy benchmark (docs/recorded_flights.md): replays every simulated preset
 # (config/sim_*.yaml) and every recorded flight (vio_sim --flight, with the
 # synthetic and with the recorded IMU, mono and stereo) through vio_replay
 # with the shipped configurations (config/default.yaml, config/stereo.yaml)
