@@ -67,6 +67,16 @@ TEST(ImuConfig, DefaultYamlHoldsEurocAdis16448Values) {
   EXPECT_EQ(c.range.accelerometer_range, ImuRange().accelerometer_range);
   EXPECT_EQ(c.range.gyroscope_range, ImuRange().gyroscope_range);
   EXPECT_EQ(c.noise_from, ImuNoiseSource::kConfig);
+  // The built-in defaults (vio_replay without --config) are the file's.
+  const ImuConfig built_in;
+  EXPECT_EQ(c.noise.accelerometer_noise_density,
+            built_in.noise.accelerometer_noise_density);
+  EXPECT_EQ(c.noise.gyroscope_noise_density,
+            built_in.noise.gyroscope_noise_density);
+  EXPECT_EQ(c.noise.accelerometer_random_walk,
+            built_in.noise.accelerometer_random_walk);
+  EXPECT_EQ(c.noise.gyroscope_random_walk,
+            built_in.noise.gyroscope_random_walk);
 }
 
 TEST(ImuConfig, NoiseCanComeFromTheSequence) {

@@ -55,7 +55,8 @@ constexpr char kUsage[] =
     "  --imu-noise config|sequence  the IMU noise the estimator assumes:\n"
     "                 the config's imu: densities, or SEQUENCE's\n"
     "                 mav0/imu0/sensor.yaml (default: the config's\n"
-    "                 imu.noise_from, config in the shipped files)\n"
+    "                 imu.noise_from, config in the shipped files;\n"
+    "                 sequence for the built-in simulated default)\n"
     "  --save-tracks FILE  the observations given to the estimator, in the\n"
     "                 features.csv format: cam0 to FILE, cam1 to FILE with\n"
     "                 .cam1 before the extension\n"
@@ -214,11 +215,15 @@ std::vector<FeatureFrame> Observations(const EurocSequence& seq,
 // The IMU noise the estimator assumes: the config's (its imu: block, or
 // the built-in defaults) or the sequence's imu0/sensor.yaml, as
 // imu.noise_from or --imu-noise says; *description gives the values and
-// their origin.
+// their origin. With neither SEQUENCE nor --config (the built-in simulated
+// default) the simulator's own noise: the built-in defaults assume a real
+// MAV's, 6 times larger, which would under-weight the exact synthetic IMU.
 ImuNoise ChooseImuNoise(const Args& args, const Config& config,
                         const EurocSequence& seq, std::string* description) {
-  const ImuNoiseSource source =
-      args.has_imu_noise ? args.imu_noise : config.imu.noise_from;
+  const bool simulated_default = args.sequence.empty() && args.config.empty();
+  const ImuNoiseSource source = args.has_imu_noise  ? args.imu_noise
+                                : simulated_default ? ImuNoiseSource::kSequence
+                                                    : config.imu.noise_from;
   const bool from_config = source == ImuNoiseSource::kConfig;
   const ImuNoise& n = from_config ? config.imu.noise : seq.imu.noise;
   const std::string origin =
@@ -233,7 +238,9 @@ ImuNoise ChooseImuNoise(const Args& args, const Config& config,
                 n.accelerometer_noise_density, n.gyroscope_noise_density,
                 n.accelerometer_random_walk, n.gyroscope_random_walk,
                 origin.c_str(),
-                args.has_imu_noise ? "--imu-noise" : "imu.noise_from");
+                args.has_imu_noise  ? "--imu-noise"
+                : simulated_default ? "the built-in simulated sequence"
+                                    : "imu.noise_from");
   *description = text;
   return n;
 }
