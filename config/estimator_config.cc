@@ -17,6 +17,15 @@ std::string Upper(std::string s) {
 }
 
 void ReadSolver(const YamlNode& n, SolverOptions* o) {
+  const std::string backend = n.Get<std::string>("backend");
+  if (Upper(backend) == "WINDOW") {
+    o->backend = SolverBackend::kWindow;
+  } else if (Upper(backend) == "CERES") {
+    o->backend = SolverBackend::kCeres;
+  } else {
+    throw ConfigError(n.Where("backend") + " must be window or ceres (got '" +
+                      backend + "')");
+  }
   const std::string linear = n.Get<std::string>("linear_solver");
   if (!ceres::StringToLinearSolverType(Upper(linear), &o->linear_solver)) {
     throw ConfigError(n.Where("linear_solver") +
@@ -32,6 +41,7 @@ void ReadSolver(const YamlNode& n, SolverOptions* o) {
                       "')");
   }
   o->max_iterations = n.Get<int>("max_iterations");
+  o->function_tolerance = n.Get<double>("function_tolerance");
   o->max_time_s = n.Get<double>("max_time_s");
   o->num_threads = n.Get<int>("num_threads");
 }
@@ -105,9 +115,15 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << o.triangulation.max_depth_m << " m\n"
       << "  landmarks: outlier RMS > " << o.landmarks.outlier_threshold_px
       << " px, at most " << o.landmarks.max_landmarks << "\n"
-      << "  solver: " << ceres::LinearSolverTypeToString(o.solver.linear_solver)
+      << "  solver: "
+      << (o.solver.backend == SolverBackend::kWindow
+              ? std::string("window (inverse depths eliminated)")
+              : std::string("ceres ") +
+                    ceres::LinearSolverTypeToString(o.solver.linear_solver))
       << ", " << ceres::TrustRegionStrategyTypeToString(o.solver.trust_region)
-      << ", <= " << o.solver.max_iterations << " iterations, "
+      << ", <= " << o.solver.max_iterations
+      << " iterations, function tolerance " << o.solver.function_tolerance
+      << ", "
       << (o.solver.max_time_s > 0.0
               ? "<= " + std::to_string(o.solver.max_time_s) + " s (real time), "
               : std::string("no time limit, "))

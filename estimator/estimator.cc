@@ -387,7 +387,8 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
 void Estimator::Solve(WindowProblem* problem) {
   summary_.landmarks_per_step.push_back(problem->landmarks_used());
   const double cpu_start = ThreadCpuSeconds();
-  const ceres::Solver::Summary solve = problem->Solve(options_.solver);
+  const ceres::Solver::Summary solve =
+      problem->Solve(options_.solver, &solver_);
   summary_.solver_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
   summary_.solver_time_s.push_back(solve.total_time_in_seconds);
   summary_.solver_jacobian_time_s += solve.jacobian_evaluation_time_in_seconds;

@@ -232,6 +232,7 @@ class Estimator {
   std::vector<double*> gap_bias_prior_blocks_;
   std::vector<ImuSample> imu_;
   ImuGlitchFilter imu_filter_;
+  WindowSolver solver_;  // its buffers serve every step
   bool initialized_ = false;
   int64_t next_frame_id_ = 0;
   int64_t last_keyframe_id_ = -1;

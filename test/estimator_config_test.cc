@@ -53,9 +53,11 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.state_prior.tilt_rad, d.state_prior.tilt_rad);
   EXPECT_EQ(o.failure.max_position_jump_m, d.failure.max_position_jump_m);
   EXPECT_EQ(o.failure.max_speed_m_s, d.failure.max_speed_m_s);
+  EXPECT_EQ(o.solver.backend, d.solver.backend);
   EXPECT_EQ(o.solver.linear_solver, d.solver.linear_solver);
   EXPECT_EQ(o.solver.trust_region, d.solver.trust_region);
   EXPECT_EQ(o.solver.max_iterations, d.solver.max_iterations);
+  EXPECT_EQ(o.solver.function_tolerance, d.solver.function_tolerance);
   EXPECT_EQ(o.solver.num_threads, 1);
 }
 
@@ -77,6 +79,19 @@ TEST(EstimatorConfig, ErrorsNameFileAndKey) {
             "test.yaml: estimator.solver.linear_solver must be a Ceres "
             "linear solver such as dense_schur, sparse_schur, dense_qr (got "
             "'cholmod')");
+  EXPECT_EQ(ErrorOf(Replace(text, "backend: window", "backend: fast")),
+            "test.yaml: estimator.solver.backend must be window or ceres (got "
+            "'fast')");
+  EXPECT_EQ(ErrorOf(Replace(text, "function_tolerance: 1e-3",
+                            "function_tolerance: 1.5")),
+            "test.yaml: estimator.solver.function_tolerance must be in [0, 1) "
+            "(got 1.5)");
+  EXPECT_EQ(
+      ReadEstimatorOptions(
+          YamlNode::LoadString(
+              Replace(text, "backend: window", "backend: Ceres"), "test.yaml"))
+          .solver.backend,
+      SolverBackend::kCeres);
   EXPECT_NE(ErrorOf(Replace(text, "min_depth_m: 0.1", "min_depth_m: x"))
                 .find("estimator.triangulation.min_depth_m"),
             std::string::npos);

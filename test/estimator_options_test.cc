@@ -40,6 +40,8 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
        "landmarks.outlier_threshold_px must be > 0"},
       {[](EstimatorOptions* o) { o->solver.max_time_s = -0.01; },
        "solver.max_time_s must be >= 0"},
+      {[](EstimatorOptions* o) { o->solver.function_tolerance = -1e-3; },
+       "solver.function_tolerance must be in [0, 1)"},
       {[](EstimatorOptions* o) { o->solver.num_threads = 0; },
        "solver.num_threads must be >= 1"},
       {[](EstimatorOptions* o) { o->failure.max_gyro_bias = 0.0; },
