@@ -508,7 +508,7 @@ bool Estimator::NewestPoseCovariance(Eigen::Matrix<double, 6, 6>* covariance) {
   }
   if (!problem.AddImuFactors()) return false;
   problem.AddVisualFactors();
-  return PoseCovariance(problem.mutable_problem(),
+  return PoseCovariance(problem.CeresProblem().get(),
                         window_.frames.back()->pose.data(), covariance);
 }
 

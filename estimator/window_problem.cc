@@ -268,28 +268,38 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options,
   return solver->Solve(o);
 }
 
-ceres::Solver::Summary WindowProblem::SolveWithCeres(
-    const SolverOptions& options) {
-  ceres::Problem problem(ProblemOptions());
+std::unique_ptr<ceres::Problem> WindowProblem::CeresProblem() const {
+  auto problem = std::make_unique<ceres::Problem>(ProblemOptions());
+  AddToCeresProblem(problem.get());
+  return problem;
+}
+
+void WindowProblem::AddToCeresProblem(ceres::Problem* problem) const {
   const std::vector<bool> touched = TouchedBlocks();
   for (size_t i = 0; i < block_order_.size(); ++i) {
     double* values = block_order_[i];
     const BlockInfo& info = blocks_.at(values);
-    problem.AddParameterBlock(values, info.size,
-                              const_cast<ceres::Manifold*>(info.manifold));
+    problem->AddParameterBlock(values, info.size,
+                               const_cast<ceres::Manifold*>(info.manifold));
     if (info.constant || !touched[i]) {
-      problem.SetParameterBlockConstant(values);
+      problem->SetParameterBlockConstant(values);
     }
     for (int c = 0; c < info.size && info.bound > 0.0; ++c) {
-      problem.SetParameterLowerBound(values, c, -info.bound);
-      problem.SetParameterUpperBound(values, c, info.bound);
+      problem->SetParameterLowerBound(values, c, -info.bound);
+      problem->SetParameterUpperBound(values, c, info.bound);
     }
   }
   for (const Residual& r : residuals_) {
-    problem.AddResidualBlock(const_cast<ceres::CostFunction*>(r.cost),
-                             const_cast<ceres::LossFunction*>(r.loss),
-                             r.blocks);
+    problem->AddResidualBlock(const_cast<ceres::CostFunction*>(r.cost),
+                              const_cast<ceres::LossFunction*>(r.loss),
+                              r.blocks);
   }
+}
+
+ceres::Solver::Summary WindowProblem::SolveWithCeres(
+    const SolverOptions& options) {
+  ceres::Problem problem(ProblemOptions());
+  AddToCeresProblem(&problem);
   ceres::Solver::Options o;
   o.linear_solver_type = options.linear_solver;
   o.trust_region_strategy_type = options.trust_region;

@@ -115,8 +115,9 @@ class WindowProblem {
   MarginalizationProblem OldestFrameMarginalization(
       const OutlierReport& excluded) const;
 
-  // The problem as built (for estimator/pose_covariance.h).
-  ceres::Problem* mutable_problem() { return &problem_; }
+  // The problem as a ceres::Problem on the window's blocks, as the Ceres
+  // backend solves it (for estimator/pose_covariance.h).
+  std::unique_ptr<ceres::Problem> CeresProblem() const;
 
   int num_visual_residuals() const { return num_visual_; }
   int landmarks_used() const { return landmarks_used_; }
@@ -148,6 +149,8 @@ class WindowProblem {
 
   void AddBlock(double* values, int size, bool pose, bool constant);
   ceres::Solver::Summary SolveWithCeres(const SolverOptions& options);
+  // Adds every block (constant, bounded as here) and residual to problem.
+  void AddToCeresProblem(ceres::Problem* problem) const;
   // Per block of block_order_: whether any residual has it.
   std::vector<bool> TouchedBlocks() const;
   void AddResidual(Residual residual);
