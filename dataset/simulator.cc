@@ -132,6 +132,18 @@ bool SimulatorOptions::Validate(std::string* message) const {
                 "motion must stay 0.5 m inside the room (radii, height +- "
                 "amplitude against room sizes)");
   }
+  if (motion.shape == SimShape::kCircle &&
+      motion.radius_y_m + kClearance > room.half_length_x_m) {
+    return Fail(message,
+                "motion.radius_y_m (the circle's radius) must stay "
+                "0.5 m inside the room");
+  }
+  if (motion.shape == SimShape::kLine &&
+      motion.start_phase_s + duration_s > motion.lap_period_s) {
+    return Fail(message,
+                "motion.start_phase_s + duration_s must be <= "
+                "motion.lap_period_s for the line (one pass)");
+  }
   return true;
 }
 

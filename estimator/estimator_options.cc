@@ -100,7 +100,9 @@ bool EstimatorOptions::Validate(std::string* message) const {
             "must be in [0, 1)");
   c.NonNegative("solver.max_time_s", solver.max_time_s);
   c.AtLeast("solver.num_threads", solver.num_threads, 1);
-  return c.Done(message);
+  if (!c.Done(message)) return false;
+  return init.Validate(use_stereo, window_size, message) &&
+         zero_velocity.Validate(message);
 }
 
 }  // namespace vio

@@ -12,6 +12,7 @@
 
 #include <string>
 
+#include "estimator/initialization_options.h"
 #include "preintegration/imu_glitch_filter.h"
 
 namespace vio {
@@ -157,6 +158,8 @@ struct EstimatorOptions {
   StatePriorOptions state_prior;
   FailureOptions failure;
   SolverOptions solver;
+  InitOptions init;                   // how the estimator starts
+  ZeroVelocityOptions zero_velocity;  // holding still when still
 
   // True when every field is in range; otherwise false with a message that
   // starts with the offending field's name ("window_size must be >= 2 ...").

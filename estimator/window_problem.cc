@@ -111,6 +111,17 @@ bool WindowProblem::AddImuFactors() {
   return true;
 }
 
+void WindowProblem::AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
+                                 const std::vector<double*>& blocks,
+                                 int64_t start_frame) {
+  Residual r;
+  r.owned = std::move(cost);
+  r.cost = r.owned.get();
+  r.blocks = blocks;
+  r.link_start_frame = start_frame;
+  AddResidual(std::move(r));
+}
+
 int WindowProblem::AddVisualFactors() {
   // Candidates: triangulated, anchored in the window, seen again later.
   std::vector<Landmark*> candidates;
@@ -373,8 +384,10 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
   const WindowFrame& oldest = *window_->frames.front();
   std::set<const double*> touched;
   for (const Residual& r : residuals_) {
-    const bool prior = r.feature_id < 0 && r.imu_start_frame < 0;
+    const bool prior =
+        r.feature_id < 0 && r.imu_start_frame < 0 && r.link_start_frame < 0;
     const bool use = prior || r.imu_start_frame == oldest.id ||
+                     r.link_start_frame == oldest.id ||
                      (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
                       !excluded.Involves(r.feature_id));
     if (!use) continue;

@@ -93,6 +93,11 @@ class WindowProblem {
   // Visual factors of up to max_landmarks landmarks, those with the most
   // sightings first (ties by feature id). Returns the landmarks used.
   int AddVisualFactors();
+  // A factor (owned from now on) between two consecutive window frames whose
+  // older one is `start_frame`, on window blocks: it leaves with that frame
+  // at its marginalisation, like the IMU factor (the zero-motion factor).
+  void AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
+                    const std::vector<double*>& blocks, int64_t start_frame);
 
   // Solves with the options' backend: tcvio's window solver (the inverse
   // depths eliminated, estimator/window_solver.h) or ceres::Solve (threads
@@ -135,8 +140,9 @@ class WindowProblem {
     int64_t target_frame = -1;  // visual residuals: the sighting's frame
     int target_camera = 0;
     int64_t anchor_frame = -1;
-    int64_t imu_start_frame = -1;  // IMU residuals only
-    int first_index = 0;           // its blocks' indices in indices_
+    int64_t imu_start_frame = -1;   // IMU residuals only
+    int64_t link_start_frame = -1;  // AddFrameLink residuals only
+    int first_index = 0;            // its blocks' indices in indices_
   };
   struct BlockInfo {
     int size = 0;

@@ -56,6 +56,9 @@ FactorCase MakeTimedStereoTwoFrameReprojectionCase(
 // The marginalisation prior (factors/marginalization_prior.h).
 FactorCase MakeMarginalizationPriorCase();
 
+// The zero-motion factor of a still vehicle (factors/zero_motion_factor.h).
+FactorCase MakeZeroMotionFactorCase();
+
 }  // namespace vio
 
 #endif  // VIO_FACTORS_CHECK_FACTOR_CASES_H_
