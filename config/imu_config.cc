@@ -45,6 +45,21 @@ ImuNoise ReadImuNoise(const YamlNode& node) {
   return noise;
 }
 
+bool ParseImuNoiseSource(const std::string& name, ImuNoiseSource* source) {
+  if (name == "config") {
+    *source = ImuNoiseSource::kConfig;
+  } else if (name == "sequence") {
+    *source = ImuNoiseSource::kSequence;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* ImuNoiseSourceName(ImuNoiseSource source) {
+  return source == ImuNoiseSource::kConfig ? "config" : "sequence";
+}
+
 void ApplyImuConfig(const ImuConfig& imu, EstimatorOptions* options) {
   options->gravity_magnitude = imu.gravity_magnitude;
   options->imu_stream.rate_hz = imu.rate_hz;
@@ -54,6 +69,11 @@ void ApplyImuConfig(const ImuConfig& imu, EstimatorOptions* options) {
 ImuConfig LoadImuConfig(const YamlNode& root) {
   const YamlNode imu = root.Child("imu");
   ImuConfig c;
+  const std::string source = imu.Get<std::string>("noise_from");
+  if (!ParseImuNoiseSource(source, &c.noise_from)) {
+    throw ConfigError(imu.Where("noise_from") +
+                      " must be config or sequence (got '" + source + "')");
+  }
   c.rate_hz = imu.Get<double>("rate_hz");
   c.noise = ReadImuNoise(imu);
   c.gravity_magnitude = imu.Get<double>("gravity_magnitude");

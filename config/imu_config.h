@@ -4,6 +4,7 @@
 // The `imu:` block of a configuration file (config/default.yaml):
 //
 //   imu:
+//     noise_from: config                    # config | sequence (below)
 //     rate_hz: 200                          # nominal sample rate [Hz]
 //     accelerometer_noise_density: 2.0e-3   # [m/s^2/sqrt(Hz)]   (Kalibr names
 //     gyroscope_noise_density: 1.6968e-4    # [rad/s/sqrt(Hz)]    and units,
@@ -15,6 +16,12 @@
 //     repropagate_gyr_bias_change: 0.01     # [rad/s]
 //     accelerometer_range: 176.52           # per axis [m/s^2]
 //     gyroscope_range: 17.453               # per axis [rad/s]
+//
+// noise_from says which noise densities the estimator assumes: `config`, the
+// four keys of this block (they win: a user tunes them for the vehicle, as
+// VINS-Mono, OKVIS and Basalt users do); `sequence`, those of the replayed
+// folder's mav0/imu0/sensor.yaml (the four keys are then read and validated
+// but not used). Tools may override it (vio_replay --imu-noise).
 //
 // Every key is required. A missing key, a wrong type or an out-of-range value
 // is a ConfigError naming the file and the key, e.g.
@@ -29,8 +36,17 @@
 
 namespace vio {
 
+// Where the estimator's IMU noise densities come from.
+enum class ImuNoiseSource {
+  kConfig,    // the imu: block's four keys
+  kSequence,  // the replayed sequence's imu0/sensor.yaml
+};
+
 struct ImuConfig {
-  ImuNoise noise;
+  ImuNoiseSource noise_from = ImuNoiseSource::kConfig;
+  // As config/default.yaml: the ADIS16448's random walks, its white noise 6
+  // times the datasheet's (rotor vibration on EuRoC's MAV; issue 11).
+  ImuNoise noise{1.2e-2, 1.0e-3, 3.0e-3, 1.9393e-5};
   PreintegrationOptions preintegration;
   ImuRange range;          // measuring range: beyond it a sample is a glitch
   double rate_hz = 200.0;  // nominal sample rate [Hz]
@@ -58,6 +74,10 @@ void ApplyImuConfig(const ImuConfig& imu, EstimatorOptions* options);
 // presets hold them. Throws ConfigError for a missing or non-numeric key; the
 // caller validates (ValidateAt), so that its message names its own block.
 ImuNoise ReadImuNoise(const YamlNode& node);
+
+// "config" / "sequence" <-> ImuNoiseSource; false for any other name.
+bool ParseImuNoiseSource(const std::string& name, ImuNoiseSource* source);
+const char* ImuNoiseSourceName(ImuNoiseSource source);
 
 }  // namespace vio
 

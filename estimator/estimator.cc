@@ -11,6 +11,7 @@
 
 #include "estimator/image_velocity.h"
 #include "estimator/marginalization.h"
+#include "estimator/pose_covariance.h"
 #include "estimator/state_check.h"
 #include "estimator/state_prior.h"
 #include "estimator/window_problem.h"
@@ -447,6 +448,9 @@ void Estimator::Slide(const WindowProblem& problem) {
   // landmark they refer to is removed.
   if (marginalize) MarginalizeOldest(problem, outliers);
   for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
+  for (int64_t id : outliers.behind) features_.RemoveLandmark(id);
+  summary_.landmarks_behind_removed +=
+      static_cast<int64_t>(outliers.behind.size());
   for (const OutlierReport::BadSighting& b : outliers.sightings) {
     features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
   }
@@ -510,6 +514,19 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
   summary_.marginalization_time_s.push_back(
       Seconds(std::chrono::steady_clock::now() - start));
   summary_.marginalization_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
+}
+
+bool Estimator::NewestPoseCovariance(Eigen::Matrix<double, 6, 6>* covariance) {
+  if (!initialized_ || window_.frames.empty()) return false;
+  WindowProblem problem(&window_, &features_, ProblemSettings());
+  if (prior_) problem.AddPrior(prior_.get(), prior_blocks_);
+  if (extrinsic_prior_) {
+    problem.AddPrior(extrinsic_prior_.get(), extrinsic_prior_blocks_);
+  }
+  if (!problem.AddImuFactors()) return false;
+  problem.AddVisualFactors();
+  return PoseCovariance(problem.CeresProblem().get(),
+                        window_.frames.back()->pose.data(), covariance);
 }
 
 void Estimator::UpdateImuLinearization() {

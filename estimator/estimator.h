@@ -113,6 +113,7 @@ struct EstimatorSummary {
   int64_t landmarks_triangulated = 0;
   int64_t outlier_landmarks_removed = 0;  // most of their sightings bad
   int64_t outlier_sightings_removed = 0;  // single sightings, landmark kept
+  int64_t landmarks_behind_removed = 0;   // inverse depth <= 0 after a solve
   int64_t marginalizations = 0;
   int64_t marginalization_failures = 0;  // prior replaced by a fresh one
   int64_t solver_failures = 0;           // Ceres reported failure
@@ -161,6 +162,14 @@ class Estimator {
   // been silent for longer than max_sample_gap (a gap: the frame is tracked
   // on vision alone). Never throws on bad data.
   EstimatorOutput AddFrame(const FeatureFrame& frame);
+
+  // The covariance of the newest pose, tangent [dt (world, m), dtheta (body,
+  // rad)], from the window's information at the current estimate: the
+  // window's problem (prior, IMU and visual factors) is rebuilt and handed
+  // to estimator/pose_covariance.h. False before initialisation or when the
+  // information is singular. It costs about one solver step: call it only
+  // when the covariance is wanted.
+  bool NewestPoseCovariance(Eigen::Matrix<double, 6, 6>* covariance);
 
   const EstimatorSummary& summary() const { return summary_; }
   const EstimatorOptions& options() const { return options_; }

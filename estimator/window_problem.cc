@@ -191,6 +191,19 @@ void WindowProblem::AddLandmark(Landmark* l) {
             Tangent(std::make_unique<ReprojectionFactor>(a.xy, s.xy, sqrt_info),
                     &r.tangent);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, rho};
+      } else if (settings_.estimate_time_offset) {
+        // Camera 1 of frame j saw the point at the same instant as its
+        // camera 0: shifted along camera 1's predicted image velocity.
+        const WindowFrame& frame_j = *window_->Find(s.frame_id);
+        const Eigen::Vector3d p_c1_j = window_->T_w_c(s.frame_id, 1).inverse() *
+                                       window_->T_w_c(a.frame_id, 0) * p_c_i;
+        r.owned = std::make_unique<TimedStereoTwoFrameReprojectionFactor>(
+            TimedObservation{a.xy, velocity_i, frame_i->t_d_at_stamp},
+            TimedObservation{s.xy, MotionVelocity(frame_j, p_c1_j, 1),
+                             frame_j.t_d_at_stamp},
+            sqrt_info);
+        r.blocks = {frame_i->pose.data(), pose_j, ext0, ext1, rho,
+                    &window_->t_d};
       } else {
         r.owned = Tangent(std::make_unique<StereoTwoFrameReprojectionFactor>(
                               a.xy, s.xy, sqrt_info),
@@ -204,13 +217,14 @@ void WindowProblem::AddLandmark(Landmark* l) {
   }
 }
 
-Eigen::Vector2d WindowProblem::MotionVelocity(
-    const WindowFrame& frame, const Eigen::Vector3d& p_c) const {
+Eigen::Vector2d WindowProblem::MotionVelocity(const WindowFrame& frame,
+                                              const Eigen::Vector3d& p_c,
+                                              int camera) const {
   // The current estimates (velocity, gyroscope bias, depth), not the
   // tracker's finite difference: see estimator/image_velocity.h.
   return PredictedImageVelocity(p_c, frame.T_w_b(), frame.v_w_value(),
                                 frame.gyr_b - frame.b_g_value(),
-                                window_->T_b_c(0));
+                                window_->T_b_c(camera));
 }
 
 std::vector<bool> WindowProblem::TouchedBlocks() const {
@@ -265,28 +279,38 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options,
   return solver->Solve(o);
 }
 
-ceres::Solver::Summary WindowProblem::SolveWithCeres(
-    const SolverOptions& options) {
-  ceres::Problem problem(ProblemOptions());
+std::unique_ptr<ceres::Problem> WindowProblem::CeresProblem() const {
+  auto problem = std::make_unique<ceres::Problem>(ProblemOptions());
+  AddToCeresProblem(problem.get());
+  return problem;
+}
+
+void WindowProblem::AddToCeresProblem(ceres::Problem* problem) const {
   const std::vector<bool> touched = TouchedBlocks();
   for (size_t i = 0; i < block_order_.size(); ++i) {
     double* values = block_order_[i];
     const BlockInfo& info = blocks_.at(values);
-    problem.AddParameterBlock(values, info.size,
-                              const_cast<ceres::Manifold*>(info.manifold));
+    problem->AddParameterBlock(values, info.size,
+                               const_cast<ceres::Manifold*>(info.manifold));
     if (info.constant || !touched[i]) {
-      problem.SetParameterBlockConstant(values);
+      problem->SetParameterBlockConstant(values);
     }
     for (int c = 0; c < info.size && info.bound > 0.0; ++c) {
-      problem.SetParameterLowerBound(values, c, -info.bound);
-      problem.SetParameterUpperBound(values, c, info.bound);
+      problem->SetParameterLowerBound(values, c, -info.bound);
+      problem->SetParameterUpperBound(values, c, info.bound);
     }
   }
   for (const Residual& r : residuals_) {
-    problem.AddResidualBlock(const_cast<ceres::CostFunction*>(r.cost),
-                             const_cast<ceres::LossFunction*>(r.loss),
-                             r.blocks);
+    problem->AddResidualBlock(const_cast<ceres::CostFunction*>(r.cost),
+                              const_cast<ceres::LossFunction*>(r.loss),
+                              r.blocks);
   }
+}
+
+ceres::Solver::Summary WindowProblem::SolveWithCeres(
+    const SolverOptions& options) {
+  ceres::Problem problem(ProblemOptions());
+  AddToCeresProblem(&problem);
   ceres::Solver::Options o;
   o.linear_solver_type = options.linear_solver;
   o.trust_region_strategy_type = options.trust_region;
@@ -306,6 +330,9 @@ ceres::Solver::Summary WindowProblem::SolveWithCeres(
 
 bool OutlierReport::Involves(int64_t feature_id) const {
   for (int64_t id : landmarks) {
+    if (id == feature_id) return true;
+  }
+  for (int64_t id : behind) {
     if (id == feature_id) return true;
   }
   for (const BadSighting& s : sightings) {
@@ -337,7 +364,9 @@ OutlierReport WindowProblem::Outliers(double threshold_px) const {
     const bool last = k + 1 == residuals_.size() ||
                       residuals_[k + 1].feature_id != r.feature_id;
     if (!last) continue;
-    if (failed || 2 * static_cast<int>(bad.size()) > total) {
+    if (!(*r.rho > 0.0)) {
+      report.behind.push_back(r.feature_id);
+    } else if (failed || 2 * static_cast<int>(bad.size()) > total) {
       report.landmarks.push_back(r.feature_id);
     } else {
       report.sightings.insert(report.sightings.end(), bad.begin(), bad.end());

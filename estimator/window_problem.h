@@ -18,6 +18,8 @@
 //                   time offset is estimated)
 //   j != i, c == 1: StereoTwoFrameReprojectionFactor
 //                   blocks pose_i, pose_j, T_b_c0, T_b_c1, rho
+//                   (TimedStereoTwoFrameReprojectionFactor, with t_d after
+//                   rho, when the time offset is estimated)
 // Sightings older than the anchor (camera 1 only) are not used, so only the
 // landmarks anchored in a frame have residuals touching that frame: the
 // marginalisation of the oldest frame then removes exactly those landmarks,
@@ -49,8 +51,9 @@ struct WindowProblemSettings {
   VisualFactorOptions visual;
   double gravity_magnitude = 9.81;  // [m/s^2]
   bool estimate_extrinsics = false;
-  // Camera-0 factors between frames become TimedReprojectionFactors on the
-  // window's t_d block; camera-1 factors stay untimed.
+  // Factors between frames become timed (TimedReprojectionFactor,
+  // TimedStereoTwoFrameReprojectionFactor) on the window's t_d block; the
+  // same-frame stereo factor needs no shift (both cameras, one instant).
   bool estimate_time_offset = false;
   double max_time_offset_s = 0.02;  // |t_d| bound while estimated [s]
   int max_landmarks = 120;
@@ -65,6 +68,11 @@ struct OutlierReport {
   };
   std::vector<int64_t> landmarks;      // to remove whole, by feature id
   std::vector<BadSighting> sightings;  // to remove, their landmark kept
+  // Landmarks whose inverse depth is not positive after the solve: the point
+  // lies behind its anchor camera (or at infinity on the wrong side), where
+  // the residuals keep pulling on the poses through a projective depth that
+  // still looks valid. To remove whole, counted apart from the outliers.
+  std::vector<int64_t> behind;
   bool Involves(int64_t feature_id) const;
 };
 
@@ -101,7 +109,8 @@ class WindowProblem {
 
   // Sightings whose reprojection error at the current values exceeds
   // threshold_px [px]. A landmark where most of its residuals are bad (its
-  // anchor is the likely culprit) or one fails to evaluate is listed whole.
+  // anchor is the likely culprit) or one fails to evaluate is listed whole;
+  // one with inverse depth <= 0 is listed in `behind`.
   OutlierReport Outliers(double threshold_px) const;
 
   // The marginalisation of the oldest window frame: its IMU factor, the prior
@@ -110,6 +119,10 @@ class WindowProblem {
   // Landmarks with outliers (about to be removed) are left out.
   MarginalizationProblem OldestFrameMarginalization(
       const OutlierReport& excluded) const;
+
+  // The problem as a ceres::Problem on the window's blocks, as the Ceres
+  // backend solves it (for estimator/pose_covariance.h).
+  std::unique_ptr<ceres::Problem> CeresProblem() const;
 
   int num_visual_residuals() const { return num_visual_; }
   int landmarks_used() const { return landmarks_used_; }
@@ -142,14 +155,17 @@ class WindowProblem {
 
   void AddBlock(double* values, int size, bool pose, bool constant);
   ceres::Solver::Summary SolveWithCeres(const SolverOptions& options);
+  // Adds every block (constant, bounded as here) and residual to problem.
+  void AddToCeresProblem(ceres::Problem* problem) const;
   // Per block of block_order_: whether any residual has it.
   std::vector<bool> TouchedBlocks() const;
   void AddResidual(Residual residual);
   void AddLandmark(Landmark* landmark);
-  // Image velocity d xy / dt [1/s] of the camera-0 point p_c [m] in frame,
-  // predicted from the frame's current state (TimedReprojectionFactor).
+  // Image velocity d xy / dt [1/s] of the point p_c [m] in `camera` of
+  // frame, predicted from the frame's current state (the timed factors).
   Eigen::Vector2d MotionVelocity(const WindowFrame& frame,
-                                 const Eigen::Vector3d& p_c) const;
+                                 const Eigen::Vector3d& p_c,
+                                 int camera = 0) const;
 
   Window* window_;
   FeatureManager* features_;

@@ -67,4 +67,48 @@ bool TimedReprojectionFactor::Compute(double const* const* parameters,
   return true;
 }
 
+TimedStereoTwoFrameReprojectionFactor::TimedStereoTwoFrameReprojectionFactor(
+    const TimedObservation& obs_i, const TimedObservation& obs_j,
+    double sqrt_info)
+    : obs_i_(obs_i), obs_j_(obs_j), sqrt_info_(sqrt_info) {}
+
+bool TimedStereoTwoFrameReprojectionFactor::Evaluate(
+    double const* const* parameters, double* residuals,
+    double** jacobians) const {
+  const double t_d = parameters[kTimeOffset][0];
+  const Eigen::Vector2d xy_i = Shifted(obs_i_, t_d);
+  const Eigen::Vector3d f_i(xy_i.x(), xy_i.y(), 1.0);
+  const InverseDepthChain chain(f_i, parameters[kInverseDepth][0],
+                                Rigid::FromBlock(parameters[kExtrinsic0]),
+                                Rigid::FromBlock(parameters[kPoseI]),
+                                Rigid::FromBlock(parameters[kPoseJ]),
+                                Rigid::FromBlock(parameters[kExtrinsic1]));
+  const ProjectedResidual p =
+      ProjectResidual(chain.h_c(), Shifted(obs_j_, t_d), sqrt_info_);
+  Eigen::Map<Eigen::Vector2d> r(residuals);
+  r = p.r;
+  if (jacobians == nullptr) return true;
+
+  // Poses, extrinsics and rho: as in StereoTwoFrameReprojectionFactor, on
+  // the shifted f_i.
+  WriteChainJacobians(
+      p, chain,
+      {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kAnchorExtrinsic,
+       ChainBlock::kTargetExtrinsic, ChainBlock::kInverseDepth},
+      parameters, jacobians);
+  if (jacobians[kTimeOffset] != nullptr) {
+    // As in TimedReprojectionFactor: d f_i / d t_d = (-v_i, 0) through the
+    // chain, and -d xy_j(t_d) / d t_d = v_j directly:
+    //   d r / d t_d = -d_r_d_h (d h_c / d f_i)[:, 0:2] v_i + sqrt_info v_j.
+    Eigen::Map<Eigen::Vector2d> d_r_d_td(jacobians[kTimeOffset]);
+    d_r_d_td.setZero();
+    if (p.active) {
+      d_r_d_td =
+          -p.d_r_d_h * chain.d_h_d_bearing().leftCols<2>() * obs_i_.velocity +
+          sqrt_info_ * obs_j_.velocity;
+    }
+  }
+  return true;
+}
+
 }  // namespace vio

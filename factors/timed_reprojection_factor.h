@@ -67,6 +67,44 @@ class TimedReprojectionFactor final
   double sqrt_info_;
 };
 
+// The same for a stereo rig: the anchor in camera 0 of keyframe i, the target
+// in camera 1 of keyframe j (StereoTwoFrameReprojectionFactor with both
+// observations shifted to their poses' times):
+//   f_i = (xy_i(t_d), 1),  p_c_i = f_i / rho,
+//   p_c1_j = T_b_c1^-1 T_w_bj^-1 T_w_bi T_b_c0 p_c_i,
+//   r = sqrt_info * (p_c1_j.xy / p_c1_j.z - xy_j(t_d))        (2)
+// v_j is camera 1's image velocity. (Within one keyframe both cameras see
+// the same instant, so StereoReprojectionFactor needs no shift.)
+//
+// Parameter blocks, in this order:
+//   pose_i (7), pose_j (7), T_b_c0 (7), T_b_c1 (7), rho (1), t_d (1)
+class TimedStereoTwoFrameReprojectionFactor final
+    : public ceres::SizedCostFunction<2, 7, 7, 7, 7, 1, 1> {
+ public:
+  enum Block {
+    kPoseI = 0,
+    kPoseJ = 1,
+    kExtrinsic0 = 2,
+    kExtrinsic1 = 3,
+    kInverseDepth = 4,
+    kTimeOffset = 5
+  };
+
+  // obs_i: camera 0 of keyframe i (the anchor); obs_j: camera 1 of keyframe
+  // j. sqrt_info = focal [px] / sigma [px].
+  TimedStereoTwoFrameReprojectionFactor(const TimedObservation& obs_i,
+                                        const TimedObservation& obs_j,
+                                        double sqrt_info);
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  TimedObservation obs_i_;
+  TimedObservation obs_j_;
+  double sqrt_info_;
+};
+
 }  // namespace vio
 
 #endif  // VIO_FACTORS_TIMED_REPROJECTION_FACTOR_H_

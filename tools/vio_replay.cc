@@ -52,6 +52,11 @@ constexpr char kUsage[] =
     "                 (default: the built-in defaults = config/default.yaml;\n"
     "                 config/stereo.yaml for stereo)\n"
     "  --out DIR      output folder (default vio_replay_out)\n"
+    "  --imu-noise config|sequence  the IMU noise the estimator assumes:\n"
+    "                 the config's imu: densities, or SEQUENCE's\n"
+    "                 mav0/imu0/sensor.yaml (default: the config's\n"
+    "                 imu.noise_from, config in the shipped files;\n"
+    "                 sequence for the built-in simulated default)\n"
     "  --save-tracks FILE  the observations given to the estimator, in the\n"
     "                 features.csv format: cam0 to FILE, cam1 to FILE with\n"
     "                 .cam1 before the extension\n"
@@ -75,8 +80,10 @@ struct Args {
   std::string sequence;  // empty: the simulated default
   std::string config;    // empty: built-in defaults
   std::string out = "vio_replay_out";
-  std::string save_tracks;  // empty: not written
-  bool strict = false;      // refuse repeated or disordered IMU stamps
+  std::string save_tracks;     // empty: not written
+  bool has_imu_noise = false;  // --imu-noise given: overrides imu.noise_from
+  ImuNoiseSource imu_noise = ImuNoiseSource::kConfig;
+  bool strict = false;  // refuse repeated or disordered IMU stamps
   bool help = false;
 };
 
@@ -91,6 +98,13 @@ Args ParseArgs(int argc, char** argv) {
       args.out = line.Value();
     } else if (a == "--save-tracks") {
       args.save_tracks = line.Value();
+    } else if (a == "--imu-noise") {
+      const std::string name = line.Value();
+      if (!ParseImuNoiseSource(name, &args.imu_noise)) {
+        throw std::invalid_argument(
+            "--imu-noise expects config or sequence (got '" + name + "')");
+      }
+      args.has_imu_noise = true;
     } else if (a == "--strict") {
       args.strict = true;
     } else if (a == "--help" || a == "-h") {
@@ -200,6 +214,39 @@ std::vector<FeatureFrame> Observations(const EurocSequence& seq,
   return frames;
 }
 
+// The IMU noise the estimator assumes: the config's (its imu: block, or
+// the built-in defaults) or the sequence's imu0/sensor.yaml, as
+// imu.noise_from or --imu-noise says; *description gives the values and
+// their origin. With neither SEQUENCE nor --config (the built-in simulated
+// default) the simulator's own noise: the built-in defaults assume a real
+// MAV's, 6 times larger, which would under-weight the exact synthetic IMU.
+ImuNoise ChooseImuNoise(const Args& args, const Config& config,
+                        const EurocSequence& seq, std::string* description) {
+  const bool simulated_default = args.sequence.empty() && args.config.empty();
+  const ImuNoiseSource source = args.has_imu_noise  ? args.imu_noise
+                                : simulated_default ? ImuNoiseSource::kSequence
+                                                    : config.imu.noise_from;
+  const bool from_config = source == ImuNoiseSource::kConfig;
+  const ImuNoise& n = from_config ? config.imu.noise : seq.imu.noise;
+  const std::string origin =
+      from_config ? (args.config.empty() ? std::string("built-in defaults")
+                                         : args.config + " imu:")
+                  : JoinPath(seq.data.folder, "mav0/imu0/sensor.yaml");
+  char text[512];
+  std::snprintf(text, sizeof(text),
+                "accelerometer %.4g m/s^2/sqrt(Hz), gyroscope %.4g "
+                "rad/s/sqrt(Hz), random walks %.4g m/s^3/sqrt(Hz), %.4g "
+                "rad/s^2/sqrt(Hz); from %s (chosen by %s)",
+                n.accelerometer_noise_density, n.gyroscope_noise_density,
+                n.accelerometer_random_walk, n.gyroscope_random_walk,
+                origin.c_str(),
+                args.has_imu_noise  ? "--imu-noise"
+                : simulated_default ? "the built-in simulated sequence"
+                                    : "imu.noise_from");
+  *description = text;
+  return n;
+}
+
 std::vector<EstimatorCamera> Cameras(const EurocSequence& seq, int used) {
   std::vector<EstimatorCamera> cameras;
   for (int c = 0; c < used; ++c) {
@@ -267,7 +314,11 @@ int main(int argc, char** argv) {
         std::printf("wrote %s\n", file.c_str());
       }
     }
-    Estimator estimator(config.estimator, config.visual, seq.imu.noise,
+    std::string noise_description;
+    const ImuNoise noise =
+        ChooseImuNoise(args, config, seq, &noise_description);
+    std::printf("imu noise: %s\n", noise_description.c_str());
+    Estimator estimator(config.estimator, config.visual, noise,
                         config.imu.preintegration, Cameras(seq, used));
     Progress progress(frames);
     const auto start = std::chrono::steady_clock::now();
@@ -294,6 +345,7 @@ int main(int argc, char** argv) {
     std::printf("  time offset t_d      %.6f s (%s)\n",
                 estimator.time_offset_s(),
                 config.estimator.estimate_time_offset ? "estimated" : "fixed");
+    std::printf("  imu noise            %s\n", noise_description.c_str());
     if (images) {
       const double n = static_cast<double>(image_summary.frames);
       std::printf("%s", DescribeImageTracking(image_summary, used).c_str());

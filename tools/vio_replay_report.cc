@@ -129,12 +129,14 @@ void PrintSummary(const EstimatorSummary& s,
       (long long)s.marginalizations, (long long)s.marginalization_failures);
   std::printf(
       "  landmarks per step    median %.0f; outliers removed: %lld "
-      "sightings, %lld landmarks\n",
+      "sightings, %lld landmarks; %lld landmarks behind their anchor "
+      "removed\n",
       Quantile(std::vector<double>(s.landmarks_per_step.begin(),
                                    s.landmarks_per_step.end()),
                0.5),
       (long long)s.outlier_sightings_removed,
-      (long long)s.outlier_landmarks_removed);
+      (long long)s.outlier_landmarks_removed,
+      (long long)s.landmarks_behind_removed);
   std::printf(
       "  skipped input         imu non-finite %lld, imu out of order "
       "%lld, observations %lld, frames without observations %lld\n",

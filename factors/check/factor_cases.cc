@@ -9,6 +9,7 @@ std::vector<FactorCase> AllFactorCases() {
   cases.push_back(MakeTimedReprojectionCase());
   cases.push_back(MakeStereoReprojectionCase());
   cases.push_back(MakeStereoTwoFrameReprojectionCase());
+  cases.push_back(MakeTimedStereoTwoFrameReprojectionCase());
   cases.push_back(MakeMarginalizationPriorCase());
   cases.push_back(MakeZeroMotionFactorCase());
   return cases;

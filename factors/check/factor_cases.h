@@ -29,7 +29,8 @@ struct VisualFactorKind {
   bool timed;           // whether the scene needs velocities and t_d
   std::function<FactorInstance(const VisualScene&)> make;
 };
-// reprojection, reprojection_td, stereo_same_frame, stereo_two_frame.
+// reprojection, reprojection_td, stereo_same_frame, stereo_two_frame,
+// stereo_two_frame_td.
 const std::vector<VisualFactorKind>& VisualFactorKinds();
 
 // The case of a visual factor on scenes of one geometry.
@@ -48,6 +49,8 @@ FactorCase MakeTimedReprojectionCase(
 FactorCase MakeStereoReprojectionCase(
     VisualGeometry geometry = VisualGeometry::kMixed);
 FactorCase MakeStereoTwoFrameReprojectionCase(
+    VisualGeometry geometry = VisualGeometry::kMixed);
+FactorCase MakeTimedStereoTwoFrameReprojectionCase(
     VisualGeometry geometry = VisualGeometry::kMixed);
 
 // The marginalisation prior (factors/marginalization_prior.h).

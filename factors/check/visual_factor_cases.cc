@@ -75,6 +75,19 @@ FactorInstance MakeStereoTwoFrame(const VisualScene& s) {
   return f;
 }
 
+FactorInstance MakeTimedStereoTwoFrame(const VisualScene& s) {
+  FactorInstance f;
+  f.cost = std::make_unique<TimedStereoTwoFrameReprojectionFactor>(
+      s.obs_i, s.obs_j, s.sqrt_info);
+  AddRigid("pose_i", s.pose_i, &f);
+  AddRigid("pose_j", s.pose_j, &f);
+  AddRigid("T_b_c0", s.extrinsic0, &f);
+  AddRigid("T_b_c1", s.extrinsic1, &f);
+  AddScalar("rho", s.rho, &f);
+  AddScalar("t_d", s.t_d, &f);
+  return f;
+}
+
 }  // namespace
 
 FactorCase MakeVisualCase(const VisualFactorKind& kind,
@@ -104,6 +117,10 @@ const std::vector<VisualFactorKind>& VisualFactorKinds() {
        "cam0 anchor seen by cam1 of another keyframe [pose_i, pose_j, "
        "T_b_c0, T_b_c1, rho]",
        VisualTarget::kStereoOtherFrame, false, MakeStereoTwoFrame},
+      {"stereo_two_frame_td",
+       "stereo_two_frame with time offset [pose_i, pose_j, T_b_c0, T_b_c1, "
+       "rho, t_d]",
+       VisualTarget::kStereoOtherFrame, true, MakeTimedStereoTwoFrame},
   };
   return kKinds;
 }
@@ -122,6 +139,10 @@ FactorCase MakeStereoReprojectionCase(VisualGeometry geometry) {
 
 FactorCase MakeStereoTwoFrameReprojectionCase(VisualGeometry geometry) {
   return MakeVisualCase(VisualFactorKinds()[3], geometry);
+}
+
+FactorCase MakeTimedStereoTwoFrameReprojectionCase(VisualGeometry geometry) {
+  return MakeVisualCase(VisualFactorKinds()[4], geometry);
 }
 
 }  // namespace vio
