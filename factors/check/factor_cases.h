@@ -53,6 +53,10 @@ FactorCase MakeStereoTwoFrameReprojectionCase(
 // The marginalisation prior (factors/marginalization_prior.h).
 FactorCase MakeMarginalizationPriorCase();
 
+// The photometric factor (factors/photometric_factor.h) on a synthetic
+// smooth image; check/photometric_factor_case.cc.
+FactorCase MakePhotometricCase();
+
 }  // namespace vio
 
 #endif  // VIO_FACTORS_CHECK_FACTOR_CASES_H_
