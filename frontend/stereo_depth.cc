@@ -66,7 +66,8 @@ class PairSearch {
         options_(options),
         rho_lo_(1.0 / options.max_depth_m),
         rho_hi_(1.0 / options.min_depth_m),
-        sigma_line_px_(options.sigma_epipolar_px / std::pow(2.0, level)) {
+        sigma_line_px_(options.sigma_epipolar_px / std::pow(2.0, level)),
+        sigma_intensity_(options.sigma_intensity / std::pow(2.0, level)) {
     // The other camera's centre in the host frame, for the host's epipole.
     centre_ = -R_.transpose() * t_;
   }
@@ -84,6 +85,8 @@ class PairSearch {
   Eigen::Vector3d t_, centre_;
   const StereoDepthOptions& options_;
   double rho_lo_, rho_hi_, sigma_line_px_;
+  // A level averages 4^level pixels: its noise is sigma_I / 2^level.
+  double sigma_intensity_;
 };
 
 bool PairSearch::MakeLine(const Eigen::Vector2d& p, PixelLine* line) const {
@@ -221,14 +224,19 @@ bool PairSearch::Match(int u, int v, StereoDepthStats* stats,
     ++stats->ambiguous;
     return false;
   }
-  // The disparity error (header comment, step 4).
-  double I_o = 0.0;
-  Eigen::Vector2d g_o;
-  O.Evaluate(x.x(), x.y(), &I_o, &g_o.x(), &g_o.y());
-  const double g_line = g_o.dot(line.dir);
-  const double sigma_i = options_.sigma_intensity;
-  const double photo =
-      2.0 * sigma_i * sigma_i / std::max(g_line * g_line, 1e-6);
+  // The disparity error (header comment, step 4): the pattern's samples
+  // each carry the noise of two images, so a shift s along the line is
+  // known to 2 sigma_I^2 / sum_k (g_o(x_k) . l)^2 (the Gauss-Newton variance
+  // of a least-squares 1-D alignment of the pattern).
+  double info = 0.0;
+  for (const Eigen::Vector2d& o : line.other_offsets) {
+    double I_o = 0.0;
+    Eigen::Vector2d g_o;
+    O.Evaluate(x.x() + o.x(), x.y() + o.y(), &I_o, &g_o.x(), &g_o.y());
+    info += std::pow(g_o.dot(line.dir), 2);
+  }
+  const double sigma_i = sigma_intensity_;
+  const double photo = 2.0 * sigma_i * sigma_i / std::max(info, 1e-6);
   const double tangent = g.dot(line.n_host) / g_along;
   const double geo = sigma_line_px_ * sigma_line_px_ * tangent * tangent;
   point->uv = p;

@@ -19,18 +19,23 @@
 // 3. The best match must reach min_ncc, be unique (uniqueness_ratio) and not
 //    sit at an end of the segment; a parabola through the scores gives the
 //    sub-pixel position s, and rho follows in closed form from the line.
-// 4. Its variance is the disparity error through d rho / d s:
+// 4. Its variance is the disparity error through d rho / d s (sigma_I and
+//    sigma_l are given at level 0; a level averages 4^level pixels, so there
+//    both are divided by 2^level):
 //      V = (d rho / d s)^2 (sigma_photo^2 + sigma_geo^2)
-//      sigma_photo^2 = 2 sigma_I^2 / (g_o . l)^2      intensity noise in both
-//                                                     images, g_o the other
-//                                                     image's gradient, l the
+//      sigma_photo^2 = 2 sigma_I^2 / sum_k (g_o,k . l)^2   intensity noise in
+//                                                     both images, g_o,k the
+//                                                     other image's gradient at
+//                                                     pattern sample k, l the
 //                                                     line direction
 //      sigma_geo^2 = sigma_l^2 (g . n)^2 / (g . e)^2  an epipolar line off by
 //                                                     sigma_l moves the match
 //                                                     of an edge with gradient
 //                                                     g along the line (e its
 //                                                     host direction, n normal)
-//    (LSD-SLAM's photometric and geometric disparity errors, eqs. 5-8.)
+//    (LSD-SLAM's photometric and geometric disparity errors, eqs. 5-8, with
+//    the photometric one summed over the pattern as for any least-squares
+//    alignment of several samples.)
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
