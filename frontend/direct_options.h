@@ -60,7 +60,9 @@ struct DirectTrackerOptions {
   // doubled. A level also ends when lambda exceeds max_lambda [-].
   double lambda_floor = 0.2;
   double max_lambda = 1e8;
-  double sigma_intensity = 3.0;  // image noise sigma_I [grey]
+  // Image noise sigma_I at full resolution [grey]; level l uses
+  // sigma_I / 2^l (it averages 4^l pixels).
+  double sigma_intensity = 2.5;
   // The notes' weight W = (2 sigma_I^2 + (df/drho)^2 V)^-1; false: the
   // unweighted W = (2 sigma_I^2)^-1.
   bool variance_weight = true;

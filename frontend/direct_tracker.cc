@@ -104,8 +104,11 @@ TrackResult DirectTracker::Track(const DirectKeyframe& keyframe,
     if (stereo) {
       targets.push_back({&right->level(l), T_r_l, options_.stereo_weight, 1});
     }
+    // A level averages 4^l pixels: its intensity noise is sigma_I / 2^l.
+    DirectTrackerOptions level_options = options_;
+    level_options.sigma_intensity = options_.sigma_intensity / (1 << l);
     const PhotometricAlignment problem(points, keyframe.image.level(l).camera,
-                                       targets, options_);
+                                       targets, level_options);
     const bool enough =
         options_.solver == DirectSolver::kNotesLm
             ? SolveNotesLm(problem, l, &result.state, &result.log)

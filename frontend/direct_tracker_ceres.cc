@@ -80,7 +80,7 @@ bool DirectTracker::SolveCeres(const PhotometricAlignment& problem, int level,
       if (!factor->InverseDepthDerivative(params, &f, &d_f_d_rho)) continue;
       const double W =
           target.weight *
-          PhotometricWeight(options_.sigma_intensity,
+          PhotometricWeight(problem.options().sigma_intensity,
                             options_.variance_weight ? d_f_d_rho : 0.0,
                             points[m].variance);
       factor->set_sqrt_weight(std::sqrt(W));

@@ -88,6 +88,7 @@ class PhotometricAlignment {
   int num_affine() const { return num_affine_; }
   const std::vector<DepthPoint>& points() const { return points_; }
   const Pinhole& host_camera() const { return host_camera_; }
+  const DirectTrackerOptions& options() const { return options_; }
   const std::vector<AlignmentTarget>& targets() const { return targets_; }
 
   // The residual of point m in target k at a state; false when it is
