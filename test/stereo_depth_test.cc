@@ -52,8 +52,8 @@ TEST(StereoDepth, AgreesWithTheFrontendsKltStereoMatches) {
   const Pair pair = LoadPair(seq, 0);
   StereoDepthStats stats;
   const std::vector<DepthPoint> points =
-      StereoInverseDepth(pair.left.level(0), pair.right.level(0),
-                         seq.T_c1_c0(), 0, StereoDepthOptions(), &stats);
+      StereoInverseDepth(pair.left.level(0), pair.right.level(0), seq.T_c1_c0(),
+                         0, StereoDepthOptions(), &stats);
   EXPECT_EQ(stats.candidates, stats.along_edge + stats.out_of_view +
                                   stats.low_ncc + stats.ambiguous +
                                   stats.accepted);
@@ -78,8 +78,7 @@ TEST(StereoDepth, AgreesWithTheFrontendsKltStereoMatches) {
   const StereoMatcher matcher(cam0, cam1, StereoMatcherOptions());
   const Pinhole& K = pair.left.level(0).camera;
   std::vector<double> relative;
-  for (const FeatureObservation& m :
-       matcher.Match(raw0, raw1, observations)) {
+  for (const FeatureObservation& m : matcher.Match(raw0, raw1, observations)) {
     Eigen::Vector2d xy0, xy1;
     double depth = 0.0;
     if (!cam0.PixelToNormalized(observations[m.feature_id].uv, &xy0) ||
