@@ -72,6 +72,7 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
   o->failure.max_gyro_bias = f.Get<double>("max_gyro_bias");
   o->failure.max_position_jump_m = f.Get<double>("max_position_jump_m");
   o->failure.max_rotation_jump_deg = f.Get<double>("max_rotation_jump_deg");
+  o->failure.max_speed_m_s = f.Get<double>("max_speed_m_s");
   ReadSolver(e.Child("solver"), &o->solver);
 }
 
@@ -110,7 +111,11 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << (o.solver.max_time_s > 0.0
               ? "<= " + std::to_string(o.solver.max_time_s) + " s (real time), "
               : std::string("no time limit, "))
-      << o.solver.num_threads << " thread(s)\n";
+      << o.solver.num_threads << " thread(s)\n"
+      << "  imu stream: " << o.imu_stream.rate_hz << " Hz, range +-"
+      << o.imu_stream.range.accelerometer_range << " m/s^2, +-"
+      << o.imu_stream.range.gyroscope_range << " rad/s; speed limit "
+      << o.failure.max_speed_m_s << " m/s\n";
   return out.str();
 }
 

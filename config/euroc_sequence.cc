@@ -2,9 +2,10 @@
 
 namespace vio {
 
-EurocSequence LoadEurocSequence(const std::string& folder) {
+EurocSequence LoadEurocSequence(const std::string& folder,
+                                const EurocReadOptions& options) {
   EurocSequence sequence;
-  sequence.data = ReadEurocFolder(folder);
+  sequence.data = ReadEurocFolder(folder, options);
   const std::string mav0 = JoinPath(folder, "mav0");
   sequence.imu = ReadEurocImuYaml(JoinPath(mav0, "imu0/sensor.yaml"));
   for (const EurocCamera& camera : sequence.data.cameras) {

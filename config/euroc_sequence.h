@@ -25,7 +25,10 @@ struct EurocSequence {
 // Reads <folder>/mav0/... Throws DatasetError for the data files and
 // ConfigError for a sensor.yaml (missing, malformed, lacking a key), each
 // naming the file and the line or key.
-EurocSequence LoadEurocSequence(const std::string& folder);
+// options.strict: IMU stamps repeated or out of order are errors instead of
+// dropped and counted samples (dataset/euroc_reader.h).
+EurocSequence LoadEurocSequence(const std::string& folder,
+                                const EurocReadOptions& options = {});
 
 }  // namespace vio
 

@@ -45,6 +45,12 @@ ImuNoise ReadImuNoise(const YamlNode& node) {
   return noise;
 }
 
+void ApplyImuConfig(const ImuConfig& imu, EstimatorOptions* options) {
+  options->gravity_magnitude = imu.gravity_magnitude;
+  options->imu_stream.rate_hz = imu.rate_hz;
+  options->imu_stream.range = imu.range;
+}
+
 ImuConfig LoadImuConfig(const YamlNode& root) {
   const YamlNode imu = root.Child("imu");
   ImuConfig c;
@@ -56,9 +62,12 @@ ImuConfig LoadImuConfig(const YamlNode& root) {
       imu.Get<double>("repropagate_acc_bias_change");
   c.preintegration.repropagate_gyr_bias_change =
       imu.Get<double>("repropagate_gyr_bias_change");
+  c.range.accelerometer_range = imu.Get<double>("accelerometer_range");
+  c.range.gyroscope_range = imu.Get<double>("gyroscope_range");
   // The module's own checks first, so each message names its field.
   ValidateAt(imu, c.noise);
   ValidateAt(imu, c.preintegration);
+  ValidateAt(imu, c.range);
   ValidateAt(imu, c);
   return c;
 }

@@ -13,6 +13,8 @@
 //     max_sample_gap: 0.02                  # [s]
 //     repropagate_acc_bias_change: 0.1      # [m/s^2]
 //     repropagate_gyr_bias_change: 0.01     # [rad/s]
+//     accelerometer_range: 176.52           # per axis [m/s^2]
+//     gyroscope_range: 17.453               # per axis [rad/s]
 //
 // Every key is required. A missing key, a wrong type or an out-of-range value
 // is a ConfigError naming the file and the key, e.g.
@@ -21,6 +23,8 @@
 #include <string>
 
 #include "config/yaml_reader.h"
+#include "estimator/estimator_options.h"
+#include "preintegration/imu_glitch_filter.h"
 #include "preintegration/imu_types.h"
 
 namespace vio {
@@ -28,7 +32,8 @@ namespace vio {
 struct ImuConfig {
   ImuNoise noise;
   PreintegrationOptions preintegration;
-  double rate_hz = 200.0;           // nominal sample rate [Hz]
+  ImuRange range;          // measuring range: beyond it a sample is a glitch
+  double rate_hz = 200.0;  // nominal sample rate [Hz]
   double gravity_magnitude = 9.81;  // g in g_w = (0, 0, -g) [m/s^2]
 
   // The fields that belong to neither ImuNoise nor PreintegrationOptions, and
@@ -41,6 +46,11 @@ struct ImuConfig {
 
 // Reads and validates root's `imu` mapping; throws ConfigError.
 ImuConfig LoadImuConfig(const YamlNode& root);
+
+// Copies what the estimator takes from the imu: block into its options:
+// gravity_magnitude and imu_stream (rate_hz and the measuring range). Tools
+// call it after reading both blocks.
+void ApplyImuConfig(const ImuConfig& imu, EstimatorOptions* options);
 
 // Reads the four Kalibr noise keys (accelerometer_noise_density,
 // gyroscope_noise_density, accelerometer_random_walk, gyroscope_random_walk)

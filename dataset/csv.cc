@@ -25,10 +25,13 @@ bool CsvReader::Next() {
   std::string text;
   while (std::getline(in_, text)) {
     ++line_;
+    // Written by some Windows editors and exporters; evo skips it too.
+    if (line_ == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
     const std::string t = Trim(text);
     if (t.empty() || t[0] == '#') continue;
     fields_.clear();
-    if (t.find(',') != std::string::npos) {
+    comma_separated_ = t.find(',') != std::string::npos;
+    if (comma_separated_) {
       std::stringstream ss(t);
       std::string f;
       while (std::getline(ss, f, ',')) fields_.push_back(Trim(f));

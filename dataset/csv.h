@@ -2,10 +2,12 @@
 #define VIO_DATASET_CSV_H_
 
 // A strict reader of the comma-separated files of the EuRoC ASL layout and of
-// our own trajectory and observation files. Lines starting with '#' and blank
-// lines are skipped; every other line must have the expected number of fields,
-// each of the expected type. Any violation is a DatasetError that names the
-// file and the line: "mav0/imu0/data.csv:17: field 3 is not a number ('abc')".
+// our own trajectory and observation files. Lines starting with '#' (after
+// blanks) and blank lines are skipped wherever they are, and so is a UTF-8
+// byte-order mark at the start of the file; every other line must have the
+// expected number of fields, each of the expected type. Any violation is a
+// DatasetError that names the file and the line:
+// "mav0/imu0/data.csv:17: field 3 is not a number ('abc')".
 
 #include <cstdint>
 #include <fstream>
@@ -33,6 +35,8 @@ class CsvReader {
 
   // The current line's fields; their count; the 1-based line number.
   size_t size() const { return fields_.size(); }
+  // Whether the current line was split on commas (else on white space).
+  bool comma_separated() const { return comma_separated_; }
   int line() const { return line_; }
   const std::string& path() const { return path_; }
 
@@ -51,6 +55,7 @@ class CsvReader {
   std::string path_;
   std::ifstream in_;
   int line_ = 0;
+  bool comma_separated_ = false;
   std::vector<std::string> fields_;
 };
 

@@ -92,21 +92,28 @@ std::string JoinPath(const std::string& folder, const std::string& name) {
   return (fs::path(folder) / name).string();
 }
 
-std::vector<ImuSample> ReadEurocImu(const std::string& path) {
+std::vector<ImuSample> ReadEurocImu(const std::string& path,
+                                    ImuStampReport* report) {
   RequireFile(path);
   CsvReader csv(path);
-  std::vector<ImuSample> samples;
+  std::vector<ImuLine> lines;
   while (csv.Next()) {
     RequireFieldCount(csv, 7, "timestamp, 3 angular rates, 3 accelerations");
     ImuSample s;
     s.t_ns = csv.Int64(0);
-    RequireIncreasing(csv, samples.empty(),
-                      samples.empty() ? 0 : samples.back().t_ns, s.t_ns);
+    if (report == nullptr) {
+      RequireIncreasing(csv, lines.empty(),
+                        lines.empty() ? 0 : lines.back().sample.t_ns, s.t_ns);
+    }
     s.gyr = {csv.Double(1), csv.Double(2), csv.Double(3)};
     s.acc = {csv.Double(4), csv.Double(5), csv.Double(6)};
-    samples.push_back(s);
+    lines.push_back({s, csv.line()});
   }
-  if (samples.empty()) throw DatasetError(path + ": holds no IMU sample");
+  if (lines.empty()) throw DatasetError(path + ": holds no IMU sample");
+  if (report != nullptr) return FilterImuStamps(lines, report);
+  std::vector<ImuSample> samples;
+  samples.reserve(lines.size());
+  for (const ImuLine& l : lines) samples.push_back(l.sample);
   return samples;
 }
 
@@ -154,7 +161,8 @@ std::vector<FeatureFrame> MergedFeatureFrames(const EurocData& data) {
   return frames;
 }
 
-EurocData ReadEurocFolder(const std::string& folder) {
+EurocData ReadEurocFolder(const std::string& folder,
+                          const EurocReadOptions& options) {
   if (!IsFolder(folder)) throw DatasetError(folder + ": no such folder");
   const std::string mav0 = JoinPath(folder, "mav0");
   if (!IsFolder(mav0)) {
@@ -163,7 +171,8 @@ EurocData ReadEurocFolder(const std::string& folder) {
   }
   EurocData data;
   data.folder = folder;
-  data.imu = ReadEurocImu(JoinPath(mav0, "imu0/data.csv"));
+  data.imu = ReadEurocImu(JoinPath(mav0, "imu0/data.csv"),
+                          options.strict ? nullptr : &data.imu_stamps);
   for (int n = 0;; ++n) {
     const std::string camera = JoinPath(mav0, "cam" + std::to_string(n));
     if (!IsFolder(camera)) break;

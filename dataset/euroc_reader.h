@@ -14,16 +14,19 @@
 // whole sequence, calibrations included.
 //
 // Stamps are kept exactly as the files hold them (int64_t nanoseconds).
-// Bad input is a DatasetError naming the file and the line; the one tolerated
-// fault is an image that data.csv lists but that does not exist: it is skipped
-// and counted (EurocCamera::missing_images). Non-finite numbers (nan, inf) in
-// any file are errors naming the line, IMU samples included: a gap in the IMU
-// stream would silently bend the preintegration, so it is never papered over.
+// Bad input is a DatasetError naming the file and the line. Two faults are
+// tolerated, skipped and counted: an image that data.csv lists but that does
+// not exist (EurocCamera::missing_images), and, unless the read is strict,
+// IMU lines whose stamps do not strictly increase (repeated lines, repeated
+// stamps, samples out of order: dataset/imu_stamp_filter.h; counted in
+// EurocData::imu_stamps). A strict read refuses those too. Non-finite numbers
+// (nan, inf) in any file are errors naming the line, IMU samples included.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "dataset/imu_stamp_filter.h"
 #include "dataset/trajectory.h"
 #include "geometry/feature_observation.h"
 #include "preintegration/imu_types.h"
@@ -50,10 +53,18 @@ struct EurocCamera {
   std::vector<FeatureFrame> feature_frames;
 };
 
+// How to read a sequence.
+struct EurocReadOptions {
+  // True: an IMU stamp repeated or out of order is a DatasetError naming the
+  // line; false: the sample is dropped and counted (EurocData::imu_stamps).
+  bool strict = false;
+};
+
 // The data of a whole sequence.
 struct EurocData {
   std::string folder;          // the sequence folder (the one holding mav0/)
   std::vector<ImuSample> imu;  // strictly increasing stamps
+  ImuStampReport imu_stamps;   // IMU lines dropped for their stamps
   std::vector<EurocCamera> cameras;        // cam0, cam1, ... as present
   std::vector<StampedState> ground_truth;  // empty when absent
   int64_t start_ns = 0;  // the earliest stamp of any stream [ns]
@@ -68,7 +79,8 @@ struct EurocData {
 // Reads everything listed above. Throws DatasetError when the folder, mav0/
 // or imu0/data.csv is missing, when a camN folder holds neither data.csv nor
 // features.csv, and for any bad line of any file.
-EurocData ReadEurocFolder(const std::string& folder);
+EurocData ReadEurocFolder(const std::string& folder,
+                          const EurocReadOptions& options = {});
 
 // The feature frames of every camera that has a features.csv, merged into one
 // frame per distinct stamp (a stereo pair shares one), in stamp order; within
@@ -78,9 +90,12 @@ std::vector<FeatureFrame> MergedFeatureFrames(const EurocData& data);
 // The single files, for callers that need only one of them. Each throws
 // DatasetError naming the file (and line) when it is missing or malformed.
 
-// imu0/data.csv: t [ns], w_x, w_y, w_z [rad/s], a_x, a_y, a_z [m/s^2]; stamps
-// strictly increasing; at least one sample.
-std::vector<ImuSample> ReadEurocImu(const std::string& path);
+// imu0/data.csv: t [ns], w_x, w_y, w_z [rad/s], a_x, a_y, a_z [m/s^2]; at
+// least one sample. Strict (report null): stamps must strictly increase.
+// Otherwise repeated and out-of-order stamps are dropped and counted in
+// *report (dataset/imu_stamp_filter.h); the result strictly increases.
+std::vector<ImuSample> ReadEurocImu(const std::string& path,
+                                    ImuStampReport* report = nullptr);
 
 // camN/data.csv: t [ns], filename; stamps strictly increasing. Files missing
 // from `image_folder` are skipped and counted in *missing.

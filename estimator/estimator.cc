@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "estimator/marginalization.h"
+#include "estimator/state_check.h"
 #include "estimator/state_prior.h"
 #include "estimator/window_problem.h"
 #include "preintegration/imu_preintegration.h"
@@ -67,7 +68,8 @@ Estimator::Estimator(const EstimatorOptions& options,
       preintegration_(preintegration),
       cameras_(cameras),
       static_init_(options.static_init, options.gravity_magnitude),
-      features_(options.use_stereo ? 2 : 1) {
+      features_(options.use_stereo ? 2 : 1),
+      imu_filter_(options.imu_stream.range, preintegration.max_sample_gap) {
   std::string message;
   Require(options.Validate(&message), "options.", message);
   Require(visual.Validate(&message), "visual.", message);
@@ -97,9 +99,24 @@ void Estimator::AddImu(const ImuSample& sample) {
     ++summary_.imu_out_of_order;
     return;
   }
+  const ImuScreening screening = imu_filter_.Add(sample, &imu_);
+  if (screening != ImuScreening::kAccepted &&
+      summary_.imu_first_glitch_t_ns < 0) {
+    summary_.imu_first_glitch_t_ns = sample.t_ns;
+  }
+  switch (screening) {
+    case ImuScreening::kDropped:
+      ++summary_.imu_dropped;
+      return;
+    case ImuScreening::kReplaced:
+      ++summary_.imu_replaced;
+      break;
+    case ImuScreening::kAccepted:
+      break;
+  }
+  NoteImuStep();
   ++summary_.imu_samples;
-  imu_.push_back(sample);
-  if (!initialized_) static_init_.AddSample(sample);
+  if (!initialized_) static_init_.AddSample(imu_.back());
 }
 
 CameraPoseFn Estimator::PoseFn() const {
@@ -130,7 +147,10 @@ EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
     return skipped;
   }
   const int64_t t_imu_ns = frame.t_ns + SecondsToNs(window_.t_d);
-  if (imu_.empty() || imu_.back().t_ns < t_imu_ns) {
+  // Not covered yet: wait for the IMU, unless it has gone silent (a gap,
+  // tracked on vision alone once initialised).
+  const bool covered = !imu_.empty() && imu_.back().t_ns >= t_imu_ns;
+  if (!covered && !(initialized_ && ImuHasGap(t_imu_ns, t_imu_ns))) {
     ++summary_.frames_without_imu;
     return skipped;
   }
@@ -230,8 +250,13 @@ void Estimator::DropSecondNewest() {
   const size_t k = frames.size() - 2;
   WindowFrame& dropped = *frames[k];
   WindowFrame& newest = *frames[k + 1];
-  newest.imu = std::make_unique<ImuPreintegration>(
-      ImuPreintegration::Merge(*dropped.imu, *newest.imu));
+  // Across an IMU gap there is no preintegration to merge (a visual link).
+  if (dropped.imu && newest.imu) {
+    newest.imu = std::make_unique<ImuPreintegration>(
+        ImuPreintegration::Merge(*dropped.imu, *newest.imu));
+  } else {
+    newest.imu.reset();
+  }
   features_.RemoveFrame(dropped.id, PoseFn());
   frames.erase(frames.begin() + k);
 }
@@ -243,6 +268,14 @@ void Estimator::Reset(int64_t t_ns, Failure reason) {
   prior_blocks_.clear();
   extrinsic_prior_.reset();
   extrinsic_prior_blocks_.clear();
+  gap_bias_prior_.reset();
+  gap_bias_prior_blocks_.clear();
+}
+
+void Estimator::Restart(const FeatureFrame& frame, int64_t t_imu_ns,
+                        Failure reason, const EstimatorOutput& state) {
+  Reset(frame.t_ns, reason);
+  StartWindow(frame, t_imu_ns, state, options_.state_prior.velocity_moving);
 }
 
 bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
@@ -278,7 +311,12 @@ bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
       (Eigen::Quaterniond(prev.pose.data() + kPoseQ) * d.q).normalized();
   for (int k = kSbBa; k < 9; ++k) f->speed_bias[k] = prev.speed_bias[k];
   *predicted = OutputOf(*f, frame.t_ns);
+  PushFrame(std::move(f), frame);
+  return true;
+}
 
+void Estimator::PushFrame(std::unique_ptr<WindowFrame> f,
+                          const FeatureFrame& frame) {
   const FrameAddStats stats = features_.AddFrame(f->id, frame.observations);
   summary_.observations_skipped += stats.skipped;
   if (stats.added == 0) ++summary_.frames_without_observations;
@@ -288,24 +326,43 @@ bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   // A frame without observations adds nothing to keep.
   f->keyframe = stats.added > 0 && decision.is_keyframe;
   window_.frames.push_back(std::move(f));
-  return true;
 }
 
 bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
                              EstimatorOutput* out) {
   EstimatorOutput predicted;
-  if (!AppendFrame(frame, t_imu_ns, &predicted)) return false;
-  if (window_.frames.size() >= 3 &&
-      !window_.frames[window_.frames.size() - 2]->keyframe) {
+  if (ImuHasGap(window_.frames.back()->t_imu_ns, t_imu_ns)) {
+    if (!AppendVisualFrame(frame, t_imu_ns, &predicted)) {
+      return RestartAfterGap(frame, t_imu_ns, out);
+    }
+  } else {
+    ResumeImuAfterGap();
+    if (!AppendFrame(frame, t_imu_ns, &predicted)) return false;
+  }
+  // A frame starting the IMU chain after a gap stays: its interval cannot
+  // be merged with the visual link before it.
+  const size_t n = window_.frames.size();
+  if (n >= 3 && !window_.frames[n - 2]->keyframe &&
+      (window_.frames[n - 2]->imu || !window_.frames[n - 1]->imu)) {
     DropSecondNewest();
   }
   summary_.landmarks_triangulated +=
       features_.TriangulateNew(PoseFn(), options_.triangulation);
+  // Ceres stops the program on a non-finite block: never hand it one.
+  if (CheckWindowState(window_, features_, options_.failure.max_speed_m_s) !=
+      StateDefect::kNone) {
+    Restart(frame, t_imu_ns, Failure::kUnsafeState, last_output_);
+    *out = OutputOf(*window_.frames.back(), frame.t_ns);
+    return true;
+  }
 
   WindowProblem problem(&window_, &features_, ProblemSettings());
   if (prior_) problem.AddPrior(prior_.get(), prior_blocks_);
   if (extrinsic_prior_) {
     problem.AddPrior(extrinsic_prior_.get(), extrinsic_prior_blocks_);
+  }
+  if (gap_bias_prior_) {
+    problem.AddPrior(gap_bias_prior_.get(), gap_bias_prior_blocks_);
   }
   const bool imu_ok = problem.AddImuFactors();
   const int landmarks = problem.AddVisualFactors();
@@ -314,14 +371,13 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   Failure failure = CheckStep(predicted, landmarks, frame.t_ns);
   if (failure == Failure::kNone && !imu_ok) failure = Failure::kNonFinite;
   if (failure != Failure::kNone) {
-    Reset(frame.t_ns, failure);
     // Restart from the prediction, or from the last good output when even
     // the prediction is not finite.
-    const EstimatorOutput restart =
-        Finite(predicted) ? predicted : last_output_;
-    StartWindow(frame, t_imu_ns, restart, options_.state_prior.velocity_moving);
+    Restart(frame, t_imu_ns, failure,
+            Finite(predicted) ? predicted : last_output_);
   } else {
     Slide(problem);
+    RefreshVisualVelocity(window_.frames.back().get());
   }
   *out = OutputOf(*window_.frames.back(), frame.t_ns);
   return true;
@@ -381,6 +437,8 @@ void Estimator::Slide(const WindowProblem& problem) {
   summary_.outlier_sightings_removed +=
       static_cast<int64_t>(outliers.sightings.size());
   if (marginalize) {
+    landmark_map_.RecordAnchoredIn(features_, window_.frames.front()->id,
+                                   PoseFn());
     features_.RemoveFrame(window_.frames.front()->id, PoseFn());
     window_.frames.pop_front();
     window_.frames.front()->imu.reset();
@@ -411,12 +469,19 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
   if (result.ok()) {
     prior_ = result.MakePrior();
     prior_blocks_ = result.kept_parameter_blocks;
-    // The extrinsic prior was one of the folded factors: now in prior_.
+    // The extrinsic and gap-bias priors were folded factors: now in prior_.
     extrinsic_prior_.reset();
     extrinsic_prior_blocks_.clear();
+    gap_bias_prior_.reset();
+    gap_bias_prior_blocks_.clear();
   } else {
     // No usable prior: a fresh one on the frame that becomes the oldest.
     ++summary_.marginalization_failures;
+    if (std::count(gap_bias_prior_blocks_.begin(), gap_bias_prior_blocks_.end(),
+                   window_.frames[0]->speed_bias.data()) != 0) {
+      gap_bias_prior_.reset();
+      gap_bias_prior_blocks_.clear();
+    }
     WindowFrame& next = *window_.frames[1];
     prior_ = MakeStatePrior(next.pose.data(), next.speed_bias.data(),
                             options_.state_prior,
@@ -433,6 +498,7 @@ void Estimator::UpdateImuLinearization() {
   auto& frames = window_.frames;
   for (size_t k = 1; k < frames.size(); ++k) {
     const WindowFrame& i = *frames[k - 1];
+    if (!frames[k]->imu) continue;  // across an IMU gap
     frames[k]->imu->UpdateBiasEstimate(
         Eigen::Vector3d(i.speed_bias.data() + kSbBa),
         Eigen::Vector3d(i.speed_bias.data() + kSbBg));

@@ -18,7 +18,14 @@
 //      outlier landmarks are removed;
 //   6. when the newest frame is a keyframe and the window holds more than
 //      window_size keyframes, the oldest is marginalised into the prior.
-// The output never holds NaN: a failed step resets to the prediction.
+// The output never holds NaN: a failed step resets to the prediction, and a
+// window holding a non-finite or exploding state is never handed to Ceres
+// (estimator/state_check.h): it resets too.
+//
+// Bad IMU input (docs/robustness.md): a sample outside the measuring range
+// is replaced from its neighbours (preintegration/imu_glitch_filter.h); a
+// short gap is integrated across; across a long one the frames are tracked
+// on vision alone and the window carries on (estimator/imu_gaps.h).
 //
 // Determinism: with solver.num_threads = 1 the same input gives the same
 // output bit for bit (every container is iterated in a fixed order).
@@ -26,6 +33,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,12 +41,15 @@
 #include "estimator/estimator_options.h"
 #include "estimator/failure_detection.h"
 #include "estimator/feature_manager.h"
+#include "estimator/landmark_map.h"
+#include "estimator/imu_gaps.h"
 #include "estimator/static_initializer.h"
 #include "estimator/window.h"
 #include "estimator/window_problem.h"
 #include "factors/marginalization_prior.h"
 #include "factors/visual_factor_options.h"
 #include "geometry/feature_observation.h"
+#include "preintegration/imu_glitch_filter.h"
 #include "preintegration/imu_types.h"
 
 namespace vio {
@@ -74,12 +85,18 @@ struct EstimatorSummary {
   int64_t keyframes = 0;
   int64_t resets = 0;
   std::vector<ResetEvent> reset_log;
-  int64_t imu_samples = 0;                  // accepted
-  int64_t imu_non_finite = 0;               // skipped
-  int64_t imu_out_of_order = 0;             // stamp not after the last: skipped
-  int64_t frames_out_of_order = 0;          // stamp not after the last: skipped
-  int64_t frames_without_imu = 0;           // IMU does not cover it: skipped
-  int64_t frames_before_init = 0;           // before the static start was seen
+  int64_t imu_samples = 0;       // accepted (replaced ones too)
+  int64_t imu_non_finite = 0;    // skipped
+  int64_t imu_out_of_order = 0;  // stamp not after the last: skipped
+  int64_t imu_replaced = 0;      // outside the measuring range: replaced
+  int64_t imu_dropped = 0;       // outside it for too long to replace: dropped
+  int64_t imu_first_glitch_t_ns = -1;  // the first of those [ns]; -1: none
+  int64_t imu_short_gaps = 0;          // missed samples, integrated across
+  std::vector<ImuGap> imu_gaps;     // longer than max_sample_gap, in time order
+  int64_t frames_visual_only = 0;   // tracked on vision alone across a gap
+  int64_t frames_out_of_order = 0;  // stamp not after the last: skipped
+  int64_t frames_without_imu = 0;   // no IMU and no visual pose: skipped
+  int64_t frames_before_init = 0;   // before the static start was seen
   int64_t frames_without_observations = 0;  // processed on the IMU alone
   int64_t observations_skipped = 0;         // non-finite, unknown camera, ...
   int64_t landmarks_triangulated = 0;
@@ -114,12 +131,14 @@ class Estimator {
   ~Estimator();
 
   // Buffers one IMU sample. A non-finite sample or one not after the last is
-  // skipped and counted.
+  // skipped and counted; one outside the measuring range is replaced from
+  // its neighbours and counted; gaps are counted and logged.
   void AddImu(const ImuSample& sample);
 
   // Processes one camera frame. The IMU must already cover its stamp (plus
-  // the time offset); otherwise it is skipped and counted. Never throws on
-  // bad data.
+  // the time offset); otherwise it is skipped and counted, unless the IMU has
+  // been silent for longer than max_sample_gap (a gap: the frame is tracked
+  // on vision alone). Never throws on bad data.
   EstimatorOutput AddFrame(const FeatureFrame& frame);
 
   const EstimatorSummary& summary() const { return summary_; }
@@ -129,6 +148,14 @@ class Estimator {
   double time_offset_s() const { return window_.t_d; }
   // The extrinsic of camera 0 or 1, as estimated (or held fixed).
   Eigen::Isometry3d T_b_c(int camera) const { return window_.T_b_c(camera); }
+  // The landmarks triangulated so far, by feature id, with world position [m]
+  // and triangulation angle (estimator/landmark_map.h: each as when its
+  // anchor frame was last marginalised, or as now when still in the window).
+  // Landmarks lost to a reset, or removed as outliers before their anchor left,
+  // are not in it. Read-only: it does not change the estimate.
+  std::map<int64_t, MappedLandmark> MappedLandmarks() const {
+    return landmark_map_.WithWindow(features_, PoseFn());
+  }
 
  private:
   bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
@@ -138,6 +165,20 @@ class Estimator {
                     EstimatorOutput* out);
   bool AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
                    EstimatorOutput* predicted);
+  // Adds the frame's observations, decides whether it is a keyframe and
+  // appends it to the window.
+  void PushFrame(std::unique_ptr<WindowFrame> f, const FeatureFrame& frame);
+  // IMU gaps (estimator_gaps.cc).
+  void NoteImuStep();
+  ImuGap* GapBefore(int64_t t_ns);
+  ImuGap* GapFor(int64_t t_imu_ns);
+  bool ImuHasGap(int64_t t0_ns, int64_t t1_ns) const;
+  bool AppendVisualFrame(const FeatureFrame& frame, int64_t t_imu_ns,
+                         EstimatorOutput* predicted);
+  bool RestartAfterGap(const FeatureFrame& frame, int64_t t_imu_ns,
+                       EstimatorOutput* out);
+  void ResumeImuAfterGap();
+  void RefreshVisualVelocity(WindowFrame* newest) const;
   void DropSecondNewest();
   void Solve(WindowProblem* problem);
   Failure CheckStep(const EstimatorOutput& predicted, int landmarks,
@@ -151,6 +192,11 @@ class Estimator {
   // A fresh extrinsic prior at the current T_b_c (null when not estimated).
   void SetExtrinsicPrior();
   void Reset(int64_t t_ns, Failure reason);
+  // The one place the window starts afresh while running: a reset (counted,
+  // logged with its reason) and a new window at `frame` from `state`. An
+  // initialiser in motion replaces the state guess here.
+  void Restart(const FeatureFrame& frame, int64_t t_imu_ns, Failure reason,
+               const EstimatorOutput& state);
   void TrimImu();
   CameraPoseFn PoseFn() const;
   EstimatorOutput OutputOf(const WindowFrame& frame, int64_t t_ns) const;
@@ -163,6 +209,7 @@ class Estimator {
 
   StaticInitializer static_init_;
   FeatureManager features_;
+  LandmarkMap landmark_map_;
   Window window_;
   std::unique_ptr<MarginalizationPrior> prior_;
   std::vector<double*> prior_blocks_;
@@ -170,7 +217,12 @@ class Estimator {
   // first marginalisation folds it into prior_ (then null).
   std::unique_ptr<MarginalizationPrior> extrinsic_prior_;
   std::vector<double*> extrinsic_prior_blocks_;
+  // After an IMU gap: the biases of the frame where the IMU resumes, tied to
+  // those before the gap, until the prior absorbs the tie (then null).
+  std::unique_ptr<MarginalizationPrior> gap_bias_prior_;
+  std::vector<double*> gap_bias_prior_blocks_;
   std::vector<ImuSample> imu_;
+  ImuGlitchFilter imu_filter_;
   bool initialized_ = false;
   int64_t next_frame_id_ = 0;
   int64_t last_keyframe_id_ = -1;

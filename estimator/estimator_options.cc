@@ -31,6 +31,11 @@ class Checker {
     out << name << " " << rule << " (got " << value << ")";
     message_ = out.str();
   }
+  // A sub-struct's own Validate() result, its message prefixed.
+  void Nested(const char* prefix, bool ok, const std::string& message) {
+    if (ok || !message_.empty()) return;
+    message_ = prefix + message;
+  }
   bool Done(std::string* message) const {
     if (message_.empty()) return true;
     *message = message_;
@@ -84,6 +89,11 @@ bool EstimatorOptions::Validate(std::string* message) const {
   c.Positive("failure.max_gyro_bias", failure.max_gyro_bias);
   c.Positive("failure.max_position_jump_m", failure.max_position_jump_m);
   c.Positive("failure.max_rotation_jump_deg", failure.max_rotation_jump_deg);
+  c.Positive("failure.max_speed_m_s", failure.max_speed_m_s);
+  c.Positive("imu_stream.rate_hz", imu_stream.rate_hz);
+  std::string range_message;
+  c.Nested("imu_stream.", imu_stream.range.Validate(&range_message),
+           range_message);
   c.AtLeast("solver.max_iterations", solver.max_iterations, 1);
   c.NonNegative("solver.max_time_s", solver.max_time_s);
   c.AtLeast("solver.num_threads", solver.num_threads, 1);

@@ -12,6 +12,8 @@
 
 #include <string>
 
+#include "preintegration/imu_glitch_filter.h"
+
 namespace vio {
 
 // When a new frame becomes a keyframe (the newest frame against the last
@@ -72,7 +74,7 @@ struct StatePriorOptions {
   double gyro_bias = 0.005;      // [rad/s]
   // The camera extrinsic's calibration, when it is estimated: without a
   // prior its translation is unobservable until the body rotates, and it
-  // wanders during the still start (see README, "Online calibration").
+  // wanders during the still start (docs/estimator.md, "Online calibration").
   double extrinsic_rotation_rad = 0.02;   // about the camera axes [rad]
   double extrinsic_translation_m = 0.01;  // [m]
 };
@@ -84,6 +86,22 @@ struct FailureOptions {
   double max_gyro_bias = 0.5;           // |b_g| [rad/s]
   double max_position_jump_m = 1.0;     // newest position, step to step [m]
   double max_rotation_jump_deg = 30.0;  // newest attitude, step to step [deg]
+  // |v| of any window state, checked before every solve (an exploding
+  // prediction never reaches Ceres) and after it [m/s].
+  double max_speed_m_s = 50.0;
+};
+
+// The IMU stream as the configuration's imu: block describes it; the tools
+// copy it from there (config/imu_config.h, ApplyImuConfig), as they copy
+// gravity_magnitude.
+struct ImuStreamOptions {
+  // Nominal sample rate [Hz]: a step longer than 1.5 periods (and up to the
+  // preintegration's max_sample_gap) is a short gap, integrated across and
+  // counted.
+  double rate_hz = 200.0;
+  // A sample outside the measuring range is a glitch: replaced from its
+  // neighbours and counted (preintegration/imu_glitch_filter.h).
+  ImuRange range;
 };
 
 // Ceres options of the per-step solve.
@@ -104,10 +122,12 @@ struct SolverOptions {
 struct EstimatorOptions {
   int window_size = 10;             // keyframes in the window [-]
   double gravity_magnitude = 9.81;  // [m/s^2]
+  ImuStreamOptions imu_stream;
   bool estimate_extrinsics = false;
   // Camera-IMU time offset t_d, t_imu = t_cam + t_d [s]: frame poses sit at
   // t_cam + t_d. Estimated online (camera-0 factors, image velocity predicted
-  // from the state) when asked, within +-0.02 s (README, Online calibration).
+  // from the state) when asked, within +-0.02 s (docs/estimator.md, Online
+  // calibration).
   bool estimate_time_offset = false;
   double initial_time_offset_s = 0.0;
   // Stereo: use camera 1 too (the sequence must have it).

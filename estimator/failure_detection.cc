@@ -20,6 +20,12 @@ const char* FailureName(Failure failure) {
       return "position jump";
     case Failure::kRotationJump:
       return "rotation jump";
+    case Failure::kSpeed:
+      return "speed beyond the limit";
+    case Failure::kUnsafeState:
+      return "non-finite or exploding state before the solve";
+    case Failure::kImuGap:
+      return "IMU gap not bridged by vision";
   }
   return "unknown";
 }
@@ -41,6 +47,7 @@ Failure DetectFailure(const StepCheck& step, const FailureOptions& options) {
   const double angle_deg =
       step.q_before.angularDistance(step.q_after) * 180.0 / M_PI;
   if (angle_deg > options.max_rotation_jump_deg) return Failure::kRotationJump;
+  if (step.v_after.norm() > options.max_speed_m_s) return Failure::kSpeed;
   return Failure::kNone;
 }
 

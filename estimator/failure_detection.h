@@ -3,7 +3,8 @@
 
 // The rules that make the estimator give up and reset: too few landmarks in
 // the problem, an implausible bias, a jump of the newest pose from one step to
-// the next beyond the configured limits, or anything non-finite.
+// the next beyond the configured limits, a speed beyond the limit, or anything
+// non-finite. The last two causes are the estimator's own, not a step's.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -20,6 +21,10 @@ enum class Failure {
   kGyroBias,      // |b_g| > max_gyro_bias
   kPositionJump,  // |p_after - p_before| > max_position_jump_m
   kRotationJump,  // angle(q_before^-1 q_after) > max_rotation_jump_deg
+  kSpeed,         // |v_after| > max_speed_m_s
+  // Not from DetectFailure:
+  kUnsafeState,  // before the solve: a window state non-finite or too fast
+  kImuGap,       // an IMU gap vision could not bridge: started afresh after it
 };
 
 const char* FailureName(Failure failure);
@@ -36,7 +41,8 @@ struct StepCheck {
   Eigen::Vector3d b_g = Eigen::Vector3d::Zero();      // [rad/s]
 };
 
-// The first rule the step breaks, in the order of the enum; kNone if none.
+// The first rule the step breaks (kNonFinite to kSpeed, checked in the order
+// of the enum); kNone if none.
 // "before" is the prediction (IMU propagation) of the newest frame, "after"
 // the solved estimate.
 Failure DetectFailure(const StepCheck& step, const FailureOptions& options);

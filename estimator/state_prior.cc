@@ -53,4 +53,39 @@ std::unique_ptr<MarginalizationPrior> MakeExtrinsicPrior(
       Eigen::VectorXd::Zero(n));
 }
 
+std::unique_ptr<MarginalizationPrior> MakeBiasPrior(const double* speed_bias,
+                                                    double accel_bias_sigma,
+                                                    double gyro_bias_sigma) {
+  Eigen::Matrix<double, 6, 9> J = Eigen::Matrix<double, 6, 9>::Zero();
+  J.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity() / accel_bias_sigma;
+  J.block<3, 3>(3, 6) = Eigen::Matrix3d::Identity() / gyro_bias_sigma;
+  std::vector<PriorBlock> blocks(1);
+  blocks[0].kind = PriorBlockKind::kEuclidean;
+  blocks[0].x0.assign(speed_bias, speed_bias + 9);
+  return std::make_unique<MarginalizationPrior>(blocks, Eigen::MatrixXd(J),
+                                                Eigen::VectorXd::Zero(6));
+}
+
+std::unique_ptr<MarginalizationPrior> MakeBiasLink(const double* speed_bias_i,
+                                                   const double* speed_bias_j,
+                                                   double accel_bias_sigma,
+                                                   double gyro_bias_sigma) {
+  Eigen::Matrix<double, 6, 1> w;
+  w << Eigen::Vector3d::Constant(1.0 / accel_bias_sigma),
+      Eigen::Vector3d::Constant(1.0 / gyro_bias_sigma);
+  // Columns: [v, b_a, b_g] of i, then of j.
+  Eigen::Matrix<double, 6, 18> J = Eigen::Matrix<double, 6, 18>::Zero();
+  J.block<6, 6>(0, 3) = -Eigen::Matrix<double, 6, 6>(w.asDiagonal());
+  J.block<6, 6>(0, 12) = w.asDiagonal();
+  const Eigen::Map<const Eigen::Matrix<double, 6, 1>> b_i(speed_bias_i + 3);
+  const Eigen::Map<const Eigen::Matrix<double, 6, 1>> b_j(speed_bias_j + 3);
+  const Eigen::VectorXd r0 = w.asDiagonal() * (b_j - b_i);
+  std::vector<PriorBlock> blocks(2);
+  blocks[0].kind = PriorBlockKind::kEuclidean;
+  blocks[0].x0.assign(speed_bias_i, speed_bias_i + 9);
+  blocks[1].kind = PriorBlockKind::kEuclidean;
+  blocks[1].x0.assign(speed_bias_j, speed_bias_j + 9);
+  return std::make_unique<MarginalizationPrior>(blocks, Eigen::MatrixXd(J), r0);
+}
+
 }  // namespace vio

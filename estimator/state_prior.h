@@ -33,6 +33,24 @@ std::unique_ptr<MarginalizationPrior> MakeExtrinsicPrior(
     const std::vector<const double*>& extrinsics,
     const StatePriorOptions& sigmas);
 
+// A Gaussian prior on the biases of one speed-bias block (9 values [v, b_a,
+// b_g], finite) at their current values, the velocity left free: J is 6 x 9,
+// zero in the velocity columns, diag(1 / sigma_ba, 1 / sigma_bg) in the bias
+// ones.
+std::unique_ptr<MarginalizationPrior> MakeBiasPrior(const double* speed_bias,
+                                                    double accel_bias_sigma,
+                                                    double gyro_bias_sigma);
+
+// The bias random walk between two speed-bias blocks i and j (finite), what
+// an IMU factor between them would carry and nothing else:
+//   r = W ([b_a, b_g]_j - [b_a, b_g]_i),  W = diag(1 / sigma_ba, 1 / sigma_bg)
+// (linear, so exact in the prior's form r0 + J (x - x0)). Across an IMU gap
+// it ties the biases after the gap to those before (estimator/imu_gaps.h).
+std::unique_ptr<MarginalizationPrior> MakeBiasLink(const double* speed_bias_i,
+                                                   const double* speed_bias_j,
+                                                   double accel_bias_sigma,
+                                                   double gyro_bias_sigma);
+
 }  // namespace vio
 
 #endif  // VIO_ESTIMATOR_STATE_PRIOR_H_

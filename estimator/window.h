@@ -38,7 +38,8 @@ struct WindowFrame {
   std::array<double, 7> pose{0, 0, 0, 0, 0, 0, 1};
   std::array<double, 9> speed_bias{};
   // The IMU interval from the previous window frame to this one; null for
-  // the oldest frame.
+  // the oldest frame, and for a frame whose interval spans an IMU gap (placed
+  // by vision alone: estimator/imu_gaps.h).
   std::unique_ptr<ImuPreintegration> imu;
 
   Eigen::Map<Eigen::Vector3d> p_w_b() {

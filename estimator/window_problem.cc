@@ -84,6 +84,7 @@ bool WindowProblem::AddImuFactors() {
   for (size_t k = 1; k < frames.size(); ++k) {
     WindowFrame& i = *frames[k - 1];
     WindowFrame& j = *frames[k];
+    if (!j.imu) continue;  // across an IMU gap: linked by landmarks only
     Residual r;
     try {
       r.owned = std::make_unique<ImuFactor>(j.imu->result(),
@@ -186,6 +187,17 @@ Eigen::Vector2d WindowProblem::MotionVelocity(
 }
 
 ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {
+  // A block no residual touches (the speed-bias of a frame placed by vision
+  // across an IMU gap) is not estimated: it stays as it is.
+  std::set<const double*> touched;
+  for (const Residual& r : residuals_) {
+    touched.insert(r.blocks.begin(), r.blocks.end());
+  }
+  for (double* values : block_order_) {
+    if (touched.count(values) == 0 && !blocks_.at(values).constant) {
+      problem_.SetParameterBlockConstant(values);
+    }
+  }
   ceres::Solver::Options o;
   o.linear_solver_type = options.linear_solver;
   o.trust_region_strategy_type = options.trust_region;
@@ -269,11 +281,14 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
     m.parameter_blocks.push_back(
         {values, info.size, info.manifold, info.constant});
   }
-  m.marginalized.push_back(oldest.pose.data());
-  m.marginalized.push_back(oldest.speed_bias.data());
+  // Across an IMU gap the oldest speed-bias may be in no factor at all.
+  for (const double* block : {oldest.pose.data(), oldest.speed_bias.data()}) {
+    if (touched.count(block) != 0) m.marginalized.push_back(block);
+  }
   for (const Residual& r : residuals_) {
     if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-        !excluded.Involves(r.feature_id) && m.marginalized.back() != r.rho) {
+        !excluded.Involves(r.feature_id) &&
+        (m.marginalized.empty() || m.marginalized.back() != r.rho)) {
       m.marginalized.push_back(r.rho);
     }
   }

@@ -75,8 +75,9 @@ class WindowProblem {
   // The prior (not owned) on its blocks, which must be window blocks.
   void AddPrior(const MarginalizationPrior* prior,
                 const std::vector<double*>& blocks);
-  // IMU factors between consecutive window frames. Returns false (and adds
-  // none) when one cannot be built (a covariance not positive definite).
+  // IMU factors between consecutive window frames (none across an IMU gap,
+  // where a frame has no interval). Returns false (and adds none) when one
+  // cannot be built (a covariance not positive definite).
   bool AddImuFactors();
   // Visual factors of up to max_landmarks landmarks, those with the most
   // sightings first (ties by feature id). Returns the landmarks used.

@@ -9,26 +9,32 @@
 namespace vio {
 namespace {
 
-void CheckIncreasing(const Trajectory& trajectory, const char* name) {
+void CheckNotDecreasing(const Trajectory& trajectory, const char* name) {
   for (size_t i = 1; i < trajectory.size(); ++i) {
-    if (trajectory[i].t_ns <= trajectory[i - 1].t_ns) {
+    if (trajectory[i].t_ns < trajectory[i - 1].t_ns) {
       throw std::invalid_argument(std::string("Associate: the ") + name +
-                                  " stamps are not strictly increasing at "
-                                  "index " +
+                                  " stamps decrease at index " +
                                   std::to_string(i));
     }
   }
 }
 
-// Index of the element of `stamps` (strictly increasing, not empty) nearest
-// to t_ns; on an exact tie the earlier one, as argmin over |stamps - t| does.
+// Index of the element of `stamps` (never decreasing, not empty) nearest to
+// t_ns, as argmin over |stamps - t| picks it: on a tie between two stamps the
+// earlier one, and of repeats of the chosen stamp the first.
 size_t Nearest(const std::vector<int64_t>& stamps, int64_t t_ns) {
   const auto after = std::lower_bound(stamps.begin(), stamps.end(), t_ns);
-  if (after == stamps.begin()) return 0;
-  if (after == stamps.end()) return stamps.size() - 1;
-  const size_t j = static_cast<size_t>(after - stamps.begin());
-  // stamps[j - 1] < t_ns <= stamps[j]; '<=' keeps the earlier one on a tie.
-  return (t_ns - stamps[j - 1] <= stamps[j] - t_ns) ? j - 1 : j;
+  size_t j = 0;
+  if (after == stamps.end()) {
+    j = stamps.size() - 1;
+  } else if (after != stamps.begin()) {
+    const size_t k = static_cast<size_t>(after - stamps.begin());
+    // stamps[k - 1] < t_ns <= stamps[k]; '<=' keeps the earlier one on a tie.
+    j = (t_ns - stamps[k - 1] <= stamps[k] - t_ns) ? k - 1 : k;
+  }
+  return static_cast<size_t>(
+      std::lower_bound(stamps.begin(), stamps.end(), stamps[j]) -
+      stamps.begin());
 }
 
 }  // namespace
@@ -45,8 +51,8 @@ Association Associate(const Trajectory& estimate,
                       const Trajectory& ground_truth,
                       const AssociationOptions& options) {
   options.Validate();
-  CheckIncreasing(estimate, "estimate");
-  CheckIncreasing(ground_truth, "ground-truth");
+  CheckNotDecreasing(estimate, "estimate");
+  CheckNotDecreasing(ground_truth, "ground-truth");
 
   Association out;
   out.num_estimate_in = estimate.size();
@@ -73,6 +79,22 @@ Association Associate(const Trajectory& estimate,
     walked_out.push_back(p);
     searched_out.push_back(searched[j]);
   }
+  return out;
+}
+
+Association AssociateByIndex(const Trajectory& estimate,
+                             const Trajectory& ground_truth) {
+  if (estimate.size() != ground_truth.size()) {
+    throw std::invalid_argument(
+        "pairing by line needs as many poses in both files: the estimate has " +
+        std::to_string(estimate.size()) + ", the ground truth " +
+        std::to_string(ground_truth.size()));
+  }
+  Association out;
+  out.num_estimate_in = estimate.size();
+  out.num_ground_truth_in = ground_truth.size();
+  out.estimate = estimate;
+  out.ground_truth = ground_truth;
   return out;
 }
 

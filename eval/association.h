@@ -16,6 +16,12 @@
 //     numpy's argmin returns the first minimum.
 //   - A long pose may be taken by several short poses (no uniqueness), again
 //     as evo does. The short poses are never repeated.
+//   - Repeated stamps (a pose whose stamp equals the one before it, as TUM
+//     ground truth holds): in the long trajectory, of the poses sharing the
+//     nearest stamp the first in file order is taken (argmin's first minimum)
+//     and the later ones are never paired; in the short trajectory every pose
+//     is walked, so each of the repeats is paired, all with the same long
+//     pose.
 //
 // Stamps are compared as integer nanoseconds, so unlike evo (double seconds)
 // there is no rounding at the max_diff boundary.
@@ -46,13 +52,19 @@ struct Association {
   size_t size() const { return estimate.size(); }
 };
 
-// Associates by the rule above. Both inputs must have strictly increasing
-// stamps (the trajectory readers guarantee it); throws std::invalid_argument
-// when they do not or when the options are invalid. An empty result is not an
+// Associates by the rule above. Both inputs must have stamps that never
+// decrease (the trajectory readers guarantee it); throws std::invalid_argument
+// when they do or when the options are invalid. An empty result is not an
 // error here: callers decide how many pairs they need.
 Association Associate(const Trajectory& estimate,
                       const Trajectory& ground_truth,
                       const AssociationOptions& options = {});
+
+// Pairs pose i with pose i, for trajectories without stamps (KITTI pose
+// files, as evo's kitti mode does). Throws std::invalid_argument when the two
+// do not hold the same number of poses.
+Association AssociateByIndex(const Trajectory& estimate,
+                             const Trajectory& ground_truth);
 
 }  // namespace vio
 

@@ -179,7 +179,8 @@ void DrawTopView(cv::Mat& image, const cv::Rect& area,
 // Error over time since the first associated stamp, with its RMSE.
 void DrawErrorOverTime(cv::Mat& image, const cv::Rect& area,
                        const Trajectory& aligned_estimate,
-                       const std::vector<double>& error_m) {
+                       const std::vector<double>& error_m,
+                       const std::string& time_label) {
   const int64_t t0_ns = aligned_estimate.front().t_ns;
   const double duration =
       std::max(1e-3, (aligned_estimate.back().t_ns - t0_ns) * 1e-9);
@@ -191,8 +192,7 @@ void DrawErrorOverTime(cv::Mat& image, const cv::Rect& area,
   const double rmse = std::sqrt(sum_sq / error_m.size());
   // At least 1 mm tall, so that a (near) perfect estimate gets short labels.
   const Panel panel{area, 0.0, duration, 0.0, std::max(1.1 * max_error, 1e-3)};
-  DrawAxes(image, panel, "time since first associated pose [s]",
-           "position error [m]");
+  DrawAxes(image, panel, time_label, "position error [m]");
   std::vector<cv::Point> points;
   for (size_t i = 0; i < error_m.size(); ++i) {
     const double t = (aligned_estimate[i].t_ns - t0_ns) * 1e-9;
@@ -251,7 +251,7 @@ void WriteEvaluationPlot(const std::string& path,
   PutText(image, "position error of each associated pose", {90, bottom_y - 10});
   DrawErrorOverTime(
       image, cv::Rect(left, bottom_y, w - left - right, h - bottom_y - 50),
-      aligned_estimate, error_m);
+      aligned_estimate, error_m, options.time_label);
   bool written = false;
   try {
     written = cv::imwrite(path, image);

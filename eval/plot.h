@@ -22,6 +22,8 @@ struct PlotOptions {
   std::string title;     // first line above the top panel; may be empty
   std::string estimate_label = "estimate (aligned)";
   std::string ground_truth_label = "ground truth";
+  // The bottom panel's x axis: the stamps' seconds since the first pose.
+  std::string time_label = "time since first associated pose [s]";
 };
 
 // Draws the picture for associated trajectories (element i with element i)

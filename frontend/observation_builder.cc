@@ -27,6 +27,12 @@ void ObservationBuilder::Process(FeatureFrame* frame) {
       ++summary_.unknown_camera;
       continue;
     }
+    // No camera sees there: a corrupted line, which undistortion would
+    // otherwise turn into a plausible-looking bearing.
+    if (!cameras_[obs.camera].InImage(obs.uv)) {
+      ++summary_.outside_image;
+      continue;
+    }
     if (!cameras_[obs.camera].PixelToNormalized(obs.uv, &obs.xy)) {
       ++summary_.failed_undistortion;
       continue;

@@ -27,6 +27,7 @@ struct ObservationBuilderSummary {
   int64_t frames = 0;               // frames processed
   int64_t observations = 0;         // observations kept
   int64_t unknown_camera = 0;       // camera index without a model: removed
+  int64_t outside_image = 0;        // pixel outside the image: removed
   int64_t failed_undistortion = 0;  // Undistort did not converge: removed
 };
 
@@ -37,9 +38,10 @@ class ObservationBuilder {
   explicit ObservationBuilder(std::vector<CameraModel> cameras);
 
   // Fills xy and velocity of every observation of `frame` (uv and camera
-  // must be set), removing, and counting, those of an unknown camera or whose
-  // pixel cannot be undistorted. Frames must come in strictly increasing
-  // stamp order; throws std::invalid_argument otherwise.
+  // must be set), removing, and counting, those of an unknown camera, whose
+  // pixel lies outside the image (CameraModel::InImage; a non-finite pixel
+  // included) or whose pixel cannot be undistorted. Frames must come in
+  // strictly increasing stamp order; throws std::invalid_argument otherwise.
   void Process(FeatureFrame* frame);
 
   const ObservationBuilderSummary& summary() const { return summary_; }

@@ -52,6 +52,7 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.static_init.max_acc_std, d.static_init.max_acc_std);
   EXPECT_EQ(o.state_prior.tilt_rad, d.state_prior.tilt_rad);
   EXPECT_EQ(o.failure.max_position_jump_m, d.failure.max_position_jump_m);
+  EXPECT_EQ(o.failure.max_speed_m_s, d.failure.max_speed_m_s);
   EXPECT_EQ(o.solver.linear_solver, d.solver.linear_solver);
   EXPECT_EQ(o.solver.trust_region, d.solver.trust_region);
   EXPECT_EQ(o.solver.max_iterations, d.solver.max_iterations);

@@ -46,6 +46,12 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
        "failure.max_gyro_bias must be > 0"},
       {[](EstimatorOptions* o) { o->static_init.window_s = -1.0; },
        "static_init.window_s must be > 0"},
+      {[](EstimatorOptions* o) { o->failure.max_speed_m_s = 0.0; },
+       "failure.max_speed_m_s must be > 0"},
+      {[](EstimatorOptions* o) { o->imu_stream.rate_hz = 0.0; },
+       "imu_stream.rate_hz must be > 0"},
+      {[](EstimatorOptions* o) { o->imu_stream.range.gyroscope_range = -1.0; },
+       "imu_stream.gyroscope_range must be > 0 (got -1)"},
   };
   for (const Case& c : cases) {
     EstimatorOptions o;

@@ -105,36 +105,97 @@ struct BadFile {
 };
 
 TEST(EurocReader, EveryBadImuLineNamesFileAndLine) {
-  const BadFile cases[] = {
+  // Strict or not: malformed lines are errors. Stamps that do not increase
+  // are errors only in a strict read (see the next two tests).
+  struct Case {
+    const char* rows;
+    const char* message;
+    bool strict;
+  };
+  const Case cases[] = {
       {"1000000000,0.1,0.2,0.3,9.8,0.0\n",
-       "data.csv:2: expected 7 fields, got 6"},
+       "data.csv:2: expected 7 fields, got 6", false},
       {"1000000000,0.1,0.2,0.3,9.8,0.0,0.1,7\n",
        "data.csv:2: expected 7 fields (timestamp, 3 angular rates, 3 "
-       "accelerations), got 8"},
+       "accelerations), got 8",
+       false},
       {"1000000000,0.1,0.2,abc,9.8,0.0,0.1\n",
-       "data.csv:2: field 4 is not a number ('abc')"},
+       "data.csv:2: field 4 is not a number ('abc')", false},
       {"10x0000000,0.1,0.2,0.3,9.8,0.0,0.1\n",
-       "data.csv:2: field 1 is not an integer ('10x0000000')"},
+       "data.csv:2: field 1 is not an integer ('10x0000000')", false},
       {"1000000000,0.1,nan,0.3,9.8,0.0,0.1\n",
-       "data.csv:2: field 3 is not finite ('nan')"},
+       "data.csv:2: field 3 is not finite ('nan')", false},
       {"1000000000,0.1,0.2,0.3,9.8,0.0,0.1\n"
        "1000000000,0.1,0.2,0.3,9.8,0.0,0.1\n",
-       "data.csv:3: timestamp 1000000000 is repeated"},
+       "data.csv:3: timestamp 1000000000 is repeated", true},
       {"1000000000,0.1,0.2,0.3,9.8,0.0,0.1\n"
        "\n"
        "990000000,0.1,0.2,0.3,9.8,0.0,0.1\n",
        "data.csv:4: timestamp 990000000 is before the previous one "
-       "(1000000000)"},
-      {"", "data.csv: holds no IMU sample"},
+       "(1000000000)",
+       true},
+      {"", "data.csv: holds no IMU sample", false},
   };
-  for (const BadFile& c : cases) {
+  for (const Case& c : cases) {
     SCOPED_TRACE(c.message);
     TempFolder dir;
     WriteValidSequence(dir);
     dir.Write("mav0/imu0/data.csv", std::string(kImuHeader) + c.rows);
-    ExpectDatasetError([&] { ReadEurocFolder(dir.path()); },
+    EurocReadOptions options;
+    options.strict = c.strict;
+    ExpectDatasetError([&] { ReadEurocFolder(dir.path(), options); },
                        {dir.Path("mav0/imu0/") + c.message});
   }
+}
+
+// Lines 2..9 of an IMU file: a repeated line (4), a repeated stamp with
+// other values (6), a sample from the past (8) and one stamped far in the
+// future (9, before the samples that follow it).
+constexpr char kMessyImuRows[] =
+    "1000000000,0.1,0.2,0.3,9.8,0.0,0.1\n"   // 2
+    "1005000000,0.1,0.2,0.3,9.8,0.0,0.1\n"   // 3
+    "1005000000,0.1,0.2,0.3,9.8,0.0,0.1\n"   // 4 exact repeat
+    "1010000000,0.1,0.2,0.3,9.8,0.0,0.1\n"   // 5
+    "1010000000,0.5,0.2,0.3,9.8,0.0,0.1\n"   // 6 same stamp, other values
+    "1015000000,0.1,0.2,0.3,9.8,0.0,0.1\n"   // 7
+    "1001000000,0.1,0.2,0.3,9.8,0.0,0.1\n"   // 8 before the last
+    "9000000000,0.1,0.2,0.3,9.8,0.0,0.1\n"   // 9 runs ahead
+    "1020000000,0.1,0.2,0.3,9.8,0.0,0.1\n"   // 10
+    "1025000000,0.1,0.2,0.3,9.8,0.0,0.1\n";  // 11
+
+TEST(EurocReader, RepeatedAndDisorderedImuStampsAreDroppedAndCounted) {
+  TempFolder dir;
+  WriteValidSequence(dir);
+  dir.Write("mav0/imu0/data.csv", std::string(kImuHeader) + kMessyImuRows);
+  const EurocData data = ReadEurocFolder(dir.path());
+  const std::vector<int64_t> expected = {1000000000, 1005000000, 1010000000,
+                                         1015000000, 1020000000, 1025000000};
+  ASSERT_EQ(data.imu.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(data.imu[i].t_ns, expected[i]) << i;
+  }
+  // The first of the two samples at 1010000000 is the one kept.
+  EXPECT_DOUBLE_EQ(data.imu[2].gyr.x(), 0.1);
+  const ImuStampReport& r = data.imu_stamps;
+  EXPECT_EQ(r.repeated_lines, 1);
+  EXPECT_EQ(r.first_repeated_line, 4);
+  EXPECT_EQ(r.conflicting_repeats, 1);
+  EXPECT_EQ(r.first_conflict_line, 6);
+  EXPECT_EQ(r.first_conflict_t_ns, 1010000000);
+  EXPECT_EQ(r.out_of_order, 2);
+  EXPECT_EQ(r.first_out_of_order_line, 8);
+  EXPECT_EQ(r.dropped(), 4);
+}
+
+TEST(EurocReader, StrictReadRefusesTheFirstStampThatDoesNotIncrease) {
+  TempFolder dir;
+  WriteValidSequence(dir);
+  dir.Write("mav0/imu0/data.csv", std::string(kImuHeader) + kMessyImuRows);
+  EurocReadOptions strict;
+  strict.strict = true;
+  ExpectDatasetError(
+      [&] { ReadEurocFolder(dir.path(), strict); },
+      {dir.Path("mav0/imu0/data.csv:4: timestamp 1005000000 is repeated")});
 }
 
 TEST(EurocReader, EveryBadImageListLineNamesFileAndLine) {

@@ -48,6 +48,10 @@ TEST(DetectFailure, NamesEachBrokenRule) {
                        0, 0, (o.max_rotation_jump_deg + 1.0) * M_PI / 180.0));
   EXPECT_EQ(DetectFailure(s, o), Failure::kRotationJump);
   EXPECT_STREQ(FailureName(Failure::kRotationJump), "rotation jump");
+  s = Healthy();
+  s.v_after = {0.0, -o.max_speed_m_s - 1.0, 0.0};
+  EXPECT_EQ(DetectFailure(s, o), Failure::kSpeed);
+  EXPECT_STREQ(FailureName(Failure::kSpeed), "speed beyond the limit");
 }
 
 }  // namespace

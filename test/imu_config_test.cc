@@ -21,6 +21,8 @@ imu:
   max_sample_gap: 0.02
   repropagate_acc_bias_change: 0.1
   repropagate_gyr_bias_change: 0.01
+  accelerometer_range: 176.52
+  gyroscope_range: 17.453
 )";
 
 // kBlock with `key`'s line replaced by "key: value" (or removed when value
@@ -57,6 +59,32 @@ TEST(ImuConfig, DefaultYamlHoldsEurocAdis16448Values) {
   EXPECT_DOUBLE_EQ(c.preintegration.max_sample_gap, 0.02);
   EXPECT_DOUBLE_EQ(c.preintegration.repropagate_acc_bias_change, 0.1);
   EXPECT_DOUBLE_EQ(c.preintegration.repropagate_gyr_bias_change, 0.01);
+  // ADIS16448 datasheet: +-18 g, +-1000 deg/s; the built-in defaults too.
+  EXPECT_DOUBLE_EQ(c.range.accelerometer_range, 176.52);
+  EXPECT_DOUBLE_EQ(c.range.gyroscope_range, 17.453);
+  EXPECT_EQ(c.range.accelerometer_range, ImuRange().accelerometer_range);
+  EXPECT_EQ(c.range.gyroscope_range, ImuRange().gyroscope_range);
+}
+
+TEST(ImuConfig, NonPositiveMeasuringRangeNamesFileAndKey) {
+  EXPECT_EQ(ErrorOf(With("gyroscope_range", "0")),
+            "mem.yaml: imu.gyroscope_range must be > 0 (got 0)");
+  EXPECT_EQ(ErrorOf(With("accelerometer_range", "")),
+            "mem.yaml: imu.accelerometer_range is missing");
+}
+
+TEST(ImuConfig, ApplyImuConfigCopiesGravityRateAndRange) {
+  ImuConfig imu;
+  imu.gravity_magnitude = 9.79;
+  imu.rate_hz = 400.0;
+  imu.range.accelerometer_range = 80.0;
+  imu.range.gyroscope_range = 8.0;
+  EstimatorOptions options;
+  ApplyImuConfig(imu, &options);
+  EXPECT_EQ(options.gravity_magnitude, 9.79);
+  EXPECT_EQ(options.imu_stream.rate_hz, 400.0);
+  EXPECT_EQ(options.imu_stream.range.accelerometer_range, 80.0);
+  EXPECT_EQ(options.imu_stream.range.gyroscope_range, 8.0);
 }
 
 TEST(ImuConfig, NegativeNoiseDensityNamesFileAndKey) {

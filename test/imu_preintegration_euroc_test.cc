@@ -156,7 +156,7 @@ TEST_F(EurocImu, VelocityResidualExceedsTheDatasheetAccelerometerNoise) {
   // is what the flying MAV's accelerometer senses (vibration) and the
   // smoothed truth does not hold: an estimator needs an inflated density
   // (OKVIS and VINS-Mono use 0.08 for EuRoC). This pins the measured fact so
-  // that the README's statement stays true.
+  // that the statement in docs/preintegration.md stays true.
   const std::vector<IntervalResult> results = EvaluateAll();
   EXPECT_GT(MeanBlockChi2(results, kImuV / 3), 30.0);
   EXPECT_GT(MeanBlockChi2(results, kImuP / 3), 30.0);

@@ -1,5 +1,5 @@
 // Every kind of bad input to the preintegration is an ImuError whose message
-// names the offending stamp(s) (README "Bad input").
+// names the offending stamp(s) (docs/bad_input.md).
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -93,6 +94,30 @@ TEST(ObservationBuilder, RemovesAndCountsUnknownCamerasAndOutOfOrderIsAnError) {
   EXPECT_EQ(builder.summary().observations, 1);
   FeatureFrame same = frame;
   EXPECT_THROW(builder.Process(&same), std::invalid_argument);
+}
+
+TEST(ObservationBuilder, RemovesAndCountsPixelsOutsideTheImage) {
+  const std::vector<CameraModel> models = StereoModels();
+  ObservationBuilder builder({models[0]});
+  FeatureFrame frame;
+  frame.t_ns = 3000;
+  const Eigen::Vector2d bad[] = {{-300.0, 200.0},
+                                 {1e6, 200.0},
+                                 {400.0, 480.0},  // one past the last row
+                                 {std::nan(""), 200.0}};
+  for (const Eigen::Vector2d& uv : bad) {
+    FeatureObservation o;
+    o.feature_id = static_cast<int64_t>(frame.observations.size());
+    o.uv = uv;
+    frame.observations.push_back(o);
+  }
+  frame.observations.push_back(Seen(models[0], 10, 0, {0.1, 0.1, 2.0}));
+  builder.Process(&frame);
+  ASSERT_EQ(frame.observations.size(), 1u);
+  EXPECT_EQ(frame.observations[0].feature_id, 10);
+  EXPECT_EQ(builder.summary().outside_image, 4);
+  EXPECT_EQ(builder.summary().failed_undistortion, 0);
+  EXPECT_EQ(builder.summary().observations, 1);
 }
 
 }  // namespace

@@ -69,5 +69,32 @@ TEST(StatePrior, ExtrinsicPriorWeighsTheCalibrationBySigma) {
   EXPECT_NEAR(r.norm(), 1.0, 1e-9);
 }
 
+// The bias link is the bias random walk alone: at any values of both blocks
+// it is W (b_j - b_i), whatever the velocities.
+TEST(BiasLink, IsTheWeightedBiasDifferenceAndIgnoresVelocity) {
+  double sb_i[9] = {0.5, -0.2, 0.1, 0.01, 0.02, 0.03, 0.001, 0.002, 0.003};
+  double sb_j[9] = {0.4, -0.1, 0.0, 0.02, 0.01, 0.04, 0.0015, 0.001, 0.0035};
+  const double sigma_ba = 2e-3, sigma_bg = 1.5e-5;
+  const auto link = MakeBiasLink(sb_i, sb_j, sigma_ba, sigma_bg);
+  // Away from x0: other velocities and biases in both blocks.
+  double x_i[9] = {3.0, 1.0, -1.0, 0.05, 0.0, 0.03, 0.0011, 0.002, 0.0};
+  double x_j[9] = {-2.0, 0.0, 7.0, 0.04, 0.01, 0.02, 0.001, 0.0025, 0.003};
+  const double* params[2] = {x_i, x_j};
+  Eigen::Matrix<double, 6, 1> r;
+  ASSERT_TRUE(link->Evaluate(params, r.data(), nullptr));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(r[k], (x_j[3 + k] - x_i[3 + k]) / sigma_ba, 1e-9) << k;
+    EXPECT_NEAR(r[3 + k], (x_j[6 + k] - x_i[6 + k]) / sigma_bg, 1e-6) << k;
+  }
+  // A bias prior holds one block's biases at x0, velocity free.
+  const auto prior = MakeBiasPrior(sb_i, 0.2, 0.005);
+  const double* one[1] = {x_i};
+  ASSERT_TRUE(prior->Evaluate(one, r.data(), nullptr));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(r[k], (x_i[3 + k] - sb_i[3 + k]) / 0.2, 1e-12) << k;
+    EXPECT_NEAR(r[3 + k], (x_i[6 + k] - sb_i[6 + k]) / 0.005, 1e-12) << k;
+  }
+}
+
 }  // namespace
 }  // namespace vio

@@ -38,14 +38,13 @@ constexpr char kUsage[] =
     "                [--plot FILE.png] [--rpe-unit m|f] [--rpe-deltas "
     "D,D,...]\n"
     "\n"
-    "EST and GT are TUM files (t x y z qx qy qz qw, t in seconds) or EuRoC\n"
-    "ground-truth / state CSVs (t[ns], p, q(w,x,y,z), ...); the format is "
-    "told\n"
-    "from the content. Each pose of the shorter trajectory (the estimate when\n"
-    "both are equally long) is paired with the nearest stamp of the other "
-    "within\n"
-    "--max-diff, as evo does; the estimate is aligned to the ground truth and\n"
-    "ATE and RPE are printed, one figure per line.\n"
+    "EST and GT are TUM files (t x y z qx qy qz qw, t in seconds), EuRoC\n"
+    "CSVs (t[ns], p, q(w,x,y,z), ...) or KITTI pose files (12 numbers, no\n"
+    "stamps); the format is told from the content. Each pose of the shorter\n"
+    "trajectory (the estimate when both are equally long) is paired with the\n"
+    "nearest stamp of the other within --max-diff, as evo does; two KITTI\n"
+    "files are paired line by line. The estimate is aligned to the ground\n"
+    "truth and ATE and RPE are printed, one figure per line.\n"
     "\n"
     "  --align A        se3 (default; = evo_ape --align), sim3 (= --align\n"
     "                   --correct_scale), posyaw (4-DoF, yaw + translation),\n"
@@ -156,17 +155,35 @@ const char* UnitName(vio::RpeUnit unit) {
   return unit == vio::RpeUnit::kMeters ? "m" : "f";
 }
 
-void PrintInputs(const Args& args, const vio::Trajectory& estimate,
-                 const vio::Trajectory& ground_truth) {
-  std::cout << "estimate " << args.estimate_path << " poses " << estimate.size()
-            << '\n'
+void PrintInputs(const Args& args, const vio::TrajectoryFile& estimate,
+                 const vio::TrajectoryFile& ground_truth) {
+  std::cout << "estimate " << args.estimate_path << " poses "
+            << estimate.poses.size() << " ("
+            << vio::TrajectoryFormatName(estimate.format) << ")\n"
             << "ground truth " << args.ground_truth_path << " poses "
-            << ground_truth.size() << '\n'
+            << ground_truth.poses.size() << " ("
+            << vio::TrajectoryFormatName(ground_truth.format) << ")\n"
             << "options align " << vio::AlignmentModeName(args.align)
             << ", max diff " << args.association.max_diff << " s, rpe deltas";
   for (double d : args.rpe_deltas)
     std::cout << ' ' << d << UnitName(args.rpe_unit);
   std::cout << '\n';
+}
+
+// By stamp (evo's rule, eval/association.h) or, for two KITTI files, by line.
+vio::Association AssociateFiles(const Args& args,
+                                const vio::TrajectoryFile& estimate,
+                                const vio::TrajectoryFile& ground_truth) {
+  if (estimate.stamped() && ground_truth.stamped()) {
+    return vio::Associate(estimate.poses, ground_truth.poses, args.association);
+  }
+  if (estimate.stamped() || ground_truth.stamped()) {
+    throw std::invalid_argument(
+        "a KITTI pose file has no stamps: it pairs only with another KITTI "
+        "file, line by line (as evo's kitti mode)");
+  }
+  std::cout << "association by line (KITTI)\n";
+  return vio::AssociateByIndex(estimate.poses, ground_truth.poses);
 }
 
 void CheckEnoughAssociations(const Args& args, size_t count) {
@@ -194,7 +211,7 @@ void PrintRpe(const Args& args, const vio::Trajectory& aligned,
   }
 }
 
-void Plot(const Args& args, const vio::Trajectory& ground_truth,
+void Plot(const Args& args, bool stamped, const vio::Trajectory& ground_truth,
           const vio::Trajectory& aligned,
           const vio::AbsoluteTrajectoryError& ate) {
   vio::PlotOptions options;
@@ -206,6 +223,7 @@ void Plot(const Args& args, const vio::Trajectory& ground_truth,
   options.title = title.str();
   options.estimate_label = std::string("estimate (") +
                            vio::AlignmentModeName(args.align) + " aligned)";
+  if (!stamped) options.time_label = "pose index (KITTI files: no stamps)";
   vio::WriteEvaluationPlot(args.plot_path, ground_truth, aligned,
                            ate.translation_m, options);
   std::cout << "plot " << args.plot_path << '\n';
@@ -217,13 +235,13 @@ int Run(const Args& args) {
     return 0;
   }
   std::cout.precision(6);
-  const vio::Trajectory estimate = vio::ReadTrajectory(args.estimate_path);
-  const vio::Trajectory ground_truth =
-      vio::ReadTrajectory(args.ground_truth_path);
+  const vio::TrajectoryFile estimate =
+      vio::ReadTrajectoryFile(args.estimate_path);
+  const vio::TrajectoryFile ground_truth =
+      vio::ReadTrajectoryFile(args.ground_truth_path);
   PrintInputs(args, estimate, ground_truth);
 
-  const vio::Association assoc =
-      vio::Associate(estimate, ground_truth, args.association);
+  const vio::Association assoc = AssociateFiles(args, estimate, ground_truth);
   std::cout << "associated poses " << assoc.size() << '\n';
   CheckEnoughAssociations(args, assoc.size());
   const vio::Alignment alignment =
@@ -236,7 +254,9 @@ int Run(const Args& args) {
   PrintStats("ATE", ate.translation, "m");
   PrintStats("ATE rot", ate.rotation, "deg");
   PrintRpe(args, aligned, assoc.ground_truth);
-  if (!args.plot_path.empty()) Plot(args, assoc.ground_truth, aligned, ate);
+  if (!args.plot_path.empty()) {
+    Plot(args, estimate.stamped(), assoc.ground_truth, aligned, ate);
+  }
   return 0;
 }
 

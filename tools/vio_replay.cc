@@ -19,11 +19,13 @@
 #include "config/frontend_config.h"
 #include "config/imu_config.h"
 #include "config/visual_config.h"
+#include "dataset/landmarks_io.h"
 #include "dataset/sim_folder.h"
 #include "estimator/sequence_runner.h"
 #include "frontend/observation_builder.h"
 #include "tools/command_line.h"
 #include "tools/image_tracks.h"
+#include "tools/replay_health.h"
 #include "tools/vio_replay_report.h"
 
 namespace {
@@ -33,12 +35,14 @@ using namespace vio;  // NOLINT(build/namespaces): a tool's main file
 
 constexpr char kUsage[] =
     "usage: vio_replay [SEQUENCE] [--config FILE] [--out DIR]\n"
-    "                  [--save-tracks FILE] [--help]\n"
+    "                  [--save-tracks FILE] [--strict] [--help]\n"
     "\n"
     "Replays SEQUENCE (a folder in the EuRoC ASL layout whose cameras carry\n"
     "features.csv, e.g. written by vio_sim, or images: data.csv + data/,\n"
     "tracked by the frontend) through the estimator. Writes\n"
-    "DIR/trajectory.tum and DIR/states.csv; with ground truth in the folder\n"
+    "DIR/trajectory.tum, DIR/states.csv and DIR/landmarks.csv (the mapped\n"
+    "landmarks: world x,y,z [m] and triangulation angle [deg]); with\n"
+    "ground truth in the folder\n"
     "also DIR/evaluation.png, and prints ATE and RPE (posyaw alignment).\n"
     "Without SEQUENCE it simulates the default preset (vio_sim's built-in\n"
     "defaults) into " VIO_REPLAY_CACHE
@@ -51,6 +55,12 @@ constexpr char kUsage[] =
     "  --save-tracks FILE  the observations given to the estimator, in the\n"
     "                 features.csv format: cam0 to FILE, cam1 to FILE with\n"
     "                 .cam1 before the extension\n"
+    "  --strict       refuse an IMU file whose stamps repeat or go backwards\n"
+    "                 (default: such lines are dropped, counted and warned)\n"
+    "\n"
+    "Bad input is survived and reported (docs/robustness.md): a warning\n"
+    "line per fault, counts in the summary. Exit status: 0 when most frames\n"
+    "got a pose; 4 when most did not (the reason is printed); 1 on an error.\n"
     "\n"
     "Images: the frontend: block of the config (built-in defaults without\n"
     "--config) sets the tracker; mono or stereo follows estimator.use_stereo.\n"
@@ -64,6 +74,7 @@ struct Args {
   std::string config;    // empty: built-in defaults
   std::string out = "vio_replay_out";
   std::string save_tracks;  // empty: not written
+  bool strict = false;      // refuse repeated or disordered IMU stamps
   bool help = false;
 };
 
@@ -78,6 +89,8 @@ Args ParseArgs(int argc, char** argv) {
       args.out = line.Value();
     } else if (a == "--save-tracks") {
       args.save_tracks = line.Value();
+    } else if (a == "--strict") {
+      args.strict = true;
     } else if (a == "--help" || a == "-h") {
       args.help = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -140,9 +153,9 @@ bool UsesImages(const EurocSequence& seq, int cameras_used) {
 }
 
 // Frames with xy and velocity, tracked from the images.
-std::vector<FeatureFrame> TrackedObservations(const EurocSequence& seq,
-                                              int cameras_used, Config config,
-                                              ImageTrackingSummary* summary) {
+std::vector<FeatureFrame> TrackedObservations(
+    const EurocSequence& seq, int cameras_used, Config config,
+    ImageTrackingSummary* summary, ObservationBuilderSummary* removed) {
   if (!config.frontend_missing.empty()) {
     throw ConfigError(config.frontend_missing);
   }
@@ -154,12 +167,13 @@ std::vector<FeatureFrame> TrackedObservations(const EurocSequence& seq,
       f.stereo ? "stereo" : "mono", f.tracker.max_features,
       f.tracker.min_distance_px, f.tracker.clahe ? "on" : "off",
       f.tracker.fundamental_check ? "on" : "off");
-  return ImageObservations(seq, config.frontend, summary);
+  return ImageObservations(seq, config.frontend, summary, removed);
 }
 
 // Frames with xy and velocity, from each camera's features.csv.
 std::vector<FeatureFrame> Observations(const EurocSequence& seq,
-                                       int cameras_used) {
+                                       int cameras_used,
+                                       ObservationBuilderSummary* removed) {
   std::vector<CameraModel> models;
   for (int c = 0; c < cameras_used; ++c) {
     if (!seq.data.cameras[c].has_features) {
@@ -180,6 +194,7 @@ std::vector<FeatureFrame> Observations(const EurocSequence& seq,
               obs.end());
     builder.Process(&f);
   }
+  *removed = builder.summary();
   return frames;
 }
 
@@ -196,6 +211,19 @@ std::vector<EstimatorCamera> Cameras(const EurocSequence& seq, int used) {
   return cameras;
 }
 
+// DIR/landmarks.csv: the world positions of the landmarks the run mapped
+// and their triangulation angles (Estimator::MappedLandmarks), for vio_plan
+// --replay.
+void WriteLandmarks(const std::string& dir, const Estimator& estimator) {
+  std::vector<LandmarkRow> points;
+  for (const auto& [id, m] : estimator.MappedLandmarks()) {
+    points.push_back({m.p_w, m.parallax_deg});
+  }
+  const std::string path = (fs::path(dir) / "landmarks.csv").string();
+  WriteLandmarksCsv(path, points);
+  std::printf("wrote %s (%zu landmarks)\n", path.c_str(), points.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -206,9 +234,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     Config config = LoadConfig(args.config);
-    config.estimator.gravity_magnitude = config.imu.gravity_magnitude;
+    ApplyImuConfig(config.imu, &config.estimator);
     const std::string folder = SequenceFolder(args);
-    const EurocSequence seq = LoadEurocSequence(folder);
+    EurocReadOptions read;
+    read.strict = args.strict;
+    const EurocSequence seq = LoadEurocSequence(folder, read);
     const int used = config.estimator.use_stereo ? 2 : 1;
     if (static_cast<int>(seq.cameras.size()) < used) {
       throw std::runtime_error(folder +
@@ -221,9 +251,14 @@ int main(int argc, char** argv) {
                 DescribeEstimatorOptions(config.estimator).c_str());
     const bool images = UsesImages(seq, used);
     ImageTrackingSummary image_summary;
+    InputReport input;
+    input.imu_file = JoinPath(folder, "mav0/imu0/data.csv");
+    input.imu_stamps = seq.data.imu_stamps;
+    input.start_ns = seq.data.start_ns;
     const std::vector<FeatureFrame> frames =
-        images ? TrackedObservations(seq, used, config, &image_summary)
-               : Observations(seq, used);
+        images ? TrackedObservations(seq, used, config, &image_summary,
+                                     &input.observations)
+               : Observations(seq, used, &input.observations);
     if (!args.save_tracks.empty()) {
       for (const std::string& file :
            SaveTracks(args.save_tracks, frames, used)) {
@@ -243,7 +278,16 @@ int main(int argc, char** argv) {
     progress.Finish();
     fs::create_directories(args.out);
     const Trajectory estimate = WriteOutputs(args.out, outputs);
+    WriteLandmarks(args.out, estimator);
+    for (const std::string& line : InputWarnings(
+             input, estimator.summary(), config.estimator.imu_stream.range)) {
+      std::printf("%s\n", line.c_str());
+    }
     PrintSummary(estimator.summary(), frames, wall_s);
+    const int64_t with_pose = static_cast<int64_t>(estimate.size());
+    std::printf(
+        "%s",
+        DescribeInputHandling(input, estimator.summary(), with_pose).c_str());
     std::printf("  time offset t_d      %.6f s (%s)\n",
                 estimator.time_offset_s(),
                 config.estimator.estimate_time_offset ? "estimated" : "fixed");
@@ -266,9 +310,12 @@ int main(int argc, char** argv) {
           total_s > 0 ? n / total_s : 0.0);
     }
     if (!seq.data.ground_truth.empty()) {
-      Evaluate(args.out, estimate, seq.data.ground_truth);
+      Evaluate(args.out, estimate, seq.data.ground_truth, frames.size());
     }
-    return 0;
+    std::string why;
+    const int status = ReplayExitStatus(estimator.summary(), with_pose, &why);
+    if (status != 0) std::fprintf(stderr, "error: %s\n", why.c_str());
+    return status;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -146,7 +146,7 @@ void PrintSummary(const EstimatorSummary& s,
 }
 
 void Evaluate(const std::string& dir, const Trajectory& estimate,
-              const std::vector<StampedState>& ground_truth) {
+              const std::vector<StampedState>& ground_truth, size_t frames) {
   Trajectory truth;
   for (const StampedState& s : ground_truth) truth.push_back(PoseOf(s));
   const Association a = Associate(estimate, truth);
@@ -158,8 +158,9 @@ void Evaluate(const std::string& dir, const Trajectory& estimate,
       ComputeRpe(aligned, a.ground_truth, 1.0, RpeUnit::kMeters);
   std::printf(
       "  ATE (posyaw)  rmse %.4f m, max %.4f m, rotation rmse %.3f "
-      "deg (%zu poses%s)\n",
+      "deg (%zu of %zu frames%s)\n",
       ate.translation.rmse, ate.translation.max, ate.rotation.rmse, a.size(),
+      frames,
       alignment.yaw_from_orientations
           ? "; still ground truth: yaw aligned from orientations"
           : "");

@@ -42,9 +42,10 @@ void PrintSummary(const EstimatorSummary& summary,
                   const std::vector<FeatureFrame>& frames, double wall_s);
 
 // Associates, aligns (posyaw), prints ATE and RPE (1 m of travel) and writes
-// DIR/evaluation.png.
+// DIR/evaluation.png. The ATE line says how many of the sequence's `frames`
+// it covers (poses associated with the ground truth).
 void Evaluate(const std::string& dir, const Trajectory& estimate,
-              const std::vector<StampedState>& ground_truth);
+              const std::vector<StampedState>& ground_truth, size_t frames);
 
 }  // namespace vio
 

@@ -3,6 +3,7 @@
 // features.csv format so the sequence can be replayed without images.
 //
 //   vio_track <sequence folder> [--config FILE] [--save-tracks FILE]
+//             [--strict]
 
 #include <cstdio>
 #include <cstdlib>
@@ -20,16 +21,20 @@ namespace {
 
 constexpr char kUsage[] =
     "usage: vio_track <sequence folder> [--config FILE] [--save-tracks FILE]\n"
+    "                 [--strict]\n"
     "  --config FILE       YAML with a frontend: block, e.g.\n"
     "                      config/euroc_mono.yaml (default: built-in\n"
     "                      defaults = config/default.yaml, stereo)\n"
     "  --save-tracks FILE  cam0 observations to FILE, cam1 to FILE with .cam1\n"
-    "                      before the extension (features.csv format)\n";
+    "                      before the extension (features.csv format)\n"
+    "  --strict            refuse an IMU file whose stamps repeat or go\n"
+    "                      backwards (default: such lines are dropped)\n";
 
 struct Arguments {
   std::string folder;
   std::string config;  // empty: built-in defaults
   std::string save_tracks;
+  bool strict = false;  // refuse repeated or disordered IMU stamps
 };
 
 Arguments Parse(int argc, char** argv) {
@@ -41,6 +46,8 @@ Arguments Parse(int argc, char** argv) {
       args.config = line.Value();
     } else if (a == "--save-tracks") {
       args.save_tracks = line.Value();
+    } else if (a == "--strict") {
+      args.strict = true;
     } else if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       std::exit(0);
@@ -82,7 +89,16 @@ int main(int argc, char** argv) {
         args.config.empty() ? "(built-in defaults)" : args.config.c_str(),
         options.stereo ? "stereo" : "mono", options.tracker.max_features,
         options.tracker.min_distance_px, options.tracker.clahe ? "on" : "off");
-    const vio::EurocSequence sequence = vio::LoadEurocSequence(args.folder);
+    vio::EurocReadOptions read;
+    read.strict = args.strict;
+    const vio::EurocSequence sequence =
+        vio::LoadEurocSequence(args.folder, read);
+    if (sequence.data.imu_stamps.dropped() > 0) {
+      std::printf(
+          "warning: %s/mav0/imu0/data.csv: %d IMU line(s) dropped for their "
+          "stamps (repeated or out of order; --strict refuses them)\n",
+          args.folder.c_str(), sequence.data.imu_stamps.dropped());
+    }
     vio::ImageTrackingSummary summary;
     std::vector<vio::FeatureFrame> frames =
         vio::TrackEurocImages(sequence, options, &summary);

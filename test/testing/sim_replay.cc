@@ -1,5 +1,7 @@
 #include "test/testing/sim_replay.h"
 
+#include <utility>
+
 #include "dataset/trajectory.h"
 #include "estimator/sequence_runner.h"
 #include "eval/alignment.h"
@@ -26,6 +28,11 @@ EstimatorOptions OptionsFor(const SimulatorOptions& simulation) {
 }
 
 PreparedSimulation Prepare(const Simulation& simulation) {
+  return Prepare(simulation, simulation.frames);
+}
+
+PreparedSimulation Prepare(const Simulation& simulation,
+                           std::vector<FeatureFrame> raw_frames) {
   const SimCameraOptions& cam = simulation.options.camera;
   std::vector<CameraModel> models = {CameraModel(cam.cam0)};
   if (cam.stereo) models.push_back(CameraModel(cam.cam1));
@@ -38,8 +45,9 @@ PreparedSimulation Prepare(const Simulation& simulation) {
     p.cameras.push_back(c);
   }
   ObservationBuilder builder(models);
-  p.frames = simulation.frames;
+  p.frames = std::move(raw_frames);
   for (FeatureFrame& f : p.frames) builder.Process(&f);
+  p.removed = builder.summary();
   return p;
 }
 

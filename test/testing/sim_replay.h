@@ -9,6 +9,7 @@
 
 #include "dataset/simulator.h"
 #include "estimator/estimator.h"
+#include "frontend/observation_builder.h"
 
 namespace vio {
 namespace testing {
@@ -35,8 +36,13 @@ EstimatorOptions OptionsFor(const SimulatorOptions& simulation);
 struct PreparedSimulation {
   std::vector<EstimatorCamera> cameras;
   std::vector<FeatureFrame> frames;
+  ObservationBuilderSummary removed;  // what the observation step removed
 };
 PreparedSimulation Prepare(const Simulation& simulation);
+// The same for other frames (uv set) of the simulation's cameras, e.g. ones
+// with faults injected.
+PreparedSimulation Prepare(const Simulation& simulation,
+                           std::vector<FeatureFrame> raw_frames);
 
 // Runs the estimator over imu and frames and evaluates against the truth.
 SimReplay Replay(const Simulation& simulation, const EstimatorOptions& options,

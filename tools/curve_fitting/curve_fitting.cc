@@ -2,7 +2,7 @@
 // b x + c) to noisy samples with Ceres' Levenberg-Marquardt and with the
 // hand-written LM of levenberg_marquardt.h, optionally with gross outliers
 // and a robust kernel, and prints both iteration logs and the estimates side
-// by side. See the README section "Curve fitting (the LM exercise)".
+// by side. See docs/curve_fitting.md.
 
 #include <chrono>
 #include <cstdio>

@@ -1,0 +1,34 @@
+#ifndef VIO_DATASET_LANDMARKS_IO_H_
+#define VIO_DATASET_LANDMARKS_IO_H_
+
+// landmarks.csv: the world positions of a run's mapped landmarks, one per
+// line, "x,y,z,parallax_deg" after a '#' header line: x, y, z in metres in
+// the estimator's world frame W (gravity aligned, z up) and the landmark's
+// triangulation angle in degrees (estimator/landmark_map.h), by which a user
+// picks the well-triangulated ones. vio_replay writes it beside the
+// trajectory; vio_plan --replay reads it. Lines of 3 fields (x,y,z, from
+// another source) are read too, with no angle.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace vio {
+
+struct LandmarkRow {
+  Eigen::Vector3d p_w = Eigen::Vector3d::Zero();  // [m]
+  double parallax_deg = -1.0;  // triangulation angle [deg]; < 0: not given
+};
+
+// Throws DatasetError when the file cannot be written.
+void WriteLandmarksCsv(const std::string& path,
+                       const std::vector<LandmarkRow>& landmarks);
+
+// Reads every line (3 or 4 finite numbers); a malformed one is a
+// DatasetError naming file and line. A file without data lines is an empty
+// map, not an error (a run that never initialised maps nothing).
+std::vector<LandmarkRow> ReadLandmarksCsv(const std::string& path);
+
+}  // namespace vio
+
+#endif  // VIO_DATASET_LANDMARKS_IO_H_
