@@ -2,7 +2,7 @@
 #define VIO_FRONTEND_DIRECT_ODOMETRY_H_
 
 // Direct stereo odometry, frame to keyframe: the user's notes as a usable
-// baseline beside the VIO (docs/direct_method.md).
+// baseline beside the VIO (docs/direct.md).
 //
 // Per stereo pair (raw 8-bit images of the two calibrated cameras):
 // 1. both images are undistorted to pinholes (frontend/pinhole_undistorter.h)

@@ -1,12 +1,13 @@
 #ifndef VIO_FRONTEND_DIRECT_OPTIONS_H_
 #define VIO_FRONTEND_DIRECT_OPTIONS_H_
 
-// Options of the direct method (docs/direct_method.md): the semi-dense stereo
+// Options of the direct method (docs/direct.md): the semi-dense stereo
 // depth of a keyframe, the frame tracker (the notes' Algorithm 3, TrackFrame)
 // and the frame-to-keyframe odometry. Kept free of OpenCV so that config/ can
-// fill them. Every field has a default with its unit; Validate() checks the
+// fill them (no YAML block reads them yet: vio_direct sets them from its
+// flags). Every field has a default with its unit; Validate() checks the
 // ranges and, on failure, writes a message that starts with the offending
-// field's YAML name (config/direct_config.h maps them one to one).
+// field's name.
 
 #include <string>
 

@@ -23,7 +23,7 @@
 //   t (+) dt = t + dt,  R (+) dtheta = R Exp(dtheta),
 // then (a, b) of each target image when estimate_affine. The Jacobian rows
 // and the weights are derived in photometric_alignment.cc; the notes' own
-// (left-perturbation) row and its corrections are in docs/direct_method.md.
+// (left-perturbation) row and its corrections are in docs/direct.md.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
