@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <vector>
@@ -34,7 +35,7 @@ struct RunStats {
 };
 
 class MH01Motion : public ::testing::Test {
- protected:
+ public:
   static void SetUpTestSuite() {
     const std::string mav0 = testing::SharedData("euroc_MH_01_moving_6s");
     seq_ = new testing::StereoSequence(mav0);
@@ -109,31 +110,42 @@ testing::StereoSequence* MH01Motion::seq_ = nullptr;
 Trajectory* MH01Motion::gt_ = nullptr;
 std::vector<cv::Mat> MH01Motion::left_, MH01Motion::right_;
 
+// The default options (the notes' weight), run once for both tests.
+const RunStats& Weighted() {
+  static const RunStats s = MH01Motion::Run(DirectOdometryOptions());
+  return s;
+}
+
 TEST_F(MH01Motion, TracksRealMotionAgainstGroundTruth) {
-  const RunStats s = Run(DirectOdometryOptions());
+  const RunStats& s = Weighted();
   Print("weighted (the notes)", s);
   EXPECT_EQ(s.summary.frames, static_cast<int>(kFrames));
   EXPECT_EQ(s.summary.lost, 0);
   EXPECT_EQ(s.tracked, static_cast<int>(kFrames) - 1);
   EXPECT_GT(s.summary.keyframes, 1);
-  EXPECT_LT(s.mean_rot_deg, 0.3);
-  EXPECT_LT(s.mean_trans_mm, 10.0);
-  EXPECT_LT(s.max_rot_deg, 1.0);
-  EXPECT_LT(s.max_trans_mm, 30.0);
-  EXPECT_LT(s.ate_m, 0.03);
+  // Measured: mean 0.040 deg 4.1 mm, max 0.073 deg 8.9 mm, ATE 2.7 mm.
+  EXPECT_LT(s.mean_rot_deg, 0.1);
+  EXPECT_LT(s.mean_trans_mm, 6.0);
+  EXPECT_LT(s.max_rot_deg, 0.2);
+  EXPECT_LT(s.max_trans_mm, 15.0);
+  EXPECT_LT(s.ate_m, 0.005);
 }
 
 // The issue asks whether the notes' weight lowers the error against the
-// unweighted alignment; both runs are printed (docs/direct.md quotes them).
+// unweighted alignment. Measured here: the trajectory's ATE, yes (2.7 against
+// 3.0 mm); the mean frame-to-keyframe error, no (4.08 against 4.04 mm, the
+// same within noise): near a keyframe the motion is small, so df/drho and
+// with it the weight's depth term are small.
 TEST_F(MH01Motion, VarianceWeightAgainstUnweighted) {
   DirectOdometryOptions unweighted;
   unweighted.tracker.variance_weight = false;
-  const RunStats w = Run(DirectOdometryOptions());
+  const RunStats& w = Weighted();
   const RunStats u = Run(unweighted);
   Print("weighted (the notes)", w);
   Print("unweighted", u);
   EXPECT_EQ(u.summary.lost, 0);
-  EXPECT_LT(w.mean_trans_mm, u.mean_trans_mm);
+  EXPECT_LT(w.ate_m, u.ate_m);
+  EXPECT_LT(std::abs(w.mean_trans_mm - u.mean_trans_mm), 0.5);
 }
 
 TEST(DirectOdometry, BadInput) {

@@ -148,10 +148,11 @@ TEST(StereoDepth, VarianceMatchesTheSpreadBetweenTwoStillFrames) {
 // The coarser level: the inverse-variance mean of a 2 x 2 block, with the
 // harmonic mean of the variances plus the block's spread.
 TEST(StereoDepth, CoarserLevelTakesTheInverseVarianceMean) {
-  std::vector<float> values(8 * 8);
+  // The smallest image a 2-level pyramid takes (levels of >= 8 x 8 px).
+  std::vector<float> values(16 * 16);
   for (size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(i);
-  cv::Mat image(8, 8, CV_32F, values.data());
-  const ImagePyramid pyramid(image, {10, 10, 3.5, 3.5}, 2);
+  cv::Mat image(16, 16, CV_32F, values.data());
+  const ImagePyramid pyramid(image, {20, 20, 7.5, 7.5}, 2);
   std::vector<DepthPoint> fine(3);
   fine[0].uv = {2, 2};  // block (1, 1)
   fine[0].rho = 0.5;
