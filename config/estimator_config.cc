@@ -17,6 +17,15 @@ std::string Upper(std::string s) {
 }
 
 void ReadSolver(const YamlNode& n, SolverOptions* o) {
+  const std::string backend = n.Get<std::string>("backend");
+  if (Upper(backend) == "WINDOW") {
+    o->backend = SolverBackend::kWindow;
+  } else if (Upper(backend) == "CERES") {
+    o->backend = SolverBackend::kCeres;
+  } else {
+    throw ConfigError(n.Where("backend") + " must be window or ceres (got '" +
+                      backend + "')");
+  }
   const std::string linear = n.Get<std::string>("linear_solver");
   if (!ceres::StringToLinearSolverType(Upper(linear), &o->linear_solver)) {
     throw ConfigError(n.Where("linear_solver") +
@@ -32,8 +41,60 @@ void ReadSolver(const YamlNode& n, SolverOptions* o) {
                       "')");
   }
   o->max_iterations = n.Get<int>("max_iterations");
+  o->function_tolerance = n.Get<double>("function_tolerance");
   o->max_time_s = n.Get<double>("max_time_s");
   o->num_threads = n.Get<int>("num_threads");
+}
+
+void ReadInit(const YamlNode& n, InitOptions* o) {
+  const std::string method = n.Get<std::string>("method");
+  if (!ParseInitMethod(method, &o->method)) {
+    throw ConfigError(n.Where("method") +
+                      " must be one of auto, static, mono, stereo (got '" +
+                      method + "')");
+  }
+  o->reinitialize_after_reset = n.Get<bool>("reinitialize_after_reset");
+  o->max_rotation_misfit_deg = n.Get<double>("max_rotation_misfit_deg");
+  o->max_gravity_error = n.Get<double>("max_gravity_error");
+  o->max_speed_m_s = n.Get<double>("max_speed_m_s");
+  o->refine_iterations = n.Get<int>("refine_iterations");
+  o->max_refine_scale_change = n.Get<double>("max_refine_scale_change");
+  o->refine_tilt_rad = n.Get<double>("refine_tilt_rad");
+  const YamlNode m = n.Child("mono");
+  o->mono.window_s = m.Get<double>("window_s");
+  o->mono.max_frames = m.Get<int>("max_frames");
+  o->mono.min_span_s = m.Get<double>("min_span_s");
+  o->mono.min_parallax_px = m.Get<double>("min_parallax_px");
+  o->mono.min_correspondences = m.Get<int>("min_correspondences");
+  o->mono.min_inliers = m.Get<int>("min_inliers");
+  o->mono.ransac_threshold_px = m.Get<double>("ransac_threshold_px");
+  o->mono.min_pnp_inliers = m.Get<int>("min_pnp_inliers");
+  o->mono.pnp_threshold_px = m.Get<double>("pnp_threshold_px");
+  o->mono.max_reprojection_rms_px = m.Get<double>("max_reprojection_rms_px");
+  o->mono.bundle_iterations = m.Get<int>("bundle_iterations");
+  o->mono.min_imu_excitation = m.Get<double>("min_imu_excitation");
+  o->mono.max_scale_uncertainty = m.Get<double>("max_scale_uncertainty");
+  const YamlNode s = n.Child("stereo");
+  o->stereo.window_s = s.Get<double>("window_s");
+  o->stereo.min_span_s = s.Get<double>("min_span_s");
+  o->stereo.min_stereo_points = s.Get<int>("min_stereo_points");
+  o->stereo.min_pnp_inliers = s.Get<int>("min_pnp_inliers");
+  o->stereo.pnp_threshold_px = s.Get<double>("pnp_threshold_px");
+}
+
+void ReadZeroVelocity(const YamlNode& z, ZeroVelocityOptions* o) {
+  o->enabled = z.Get<bool>("enabled");
+  o->imu_window_s = z.Get<double>("imu_window_s");
+  o->block_s = z.Get<double>("block_s");
+  o->max_acc_std = z.Get<double>("max_acc_std");
+  o->max_gyr_std = z.Get<double>("max_gyr_std");
+  o->image_span_s = z.Get<double>("image_span_s");
+  o->max_disparity_px = z.Get<double>("max_disparity_px");
+  o->min_common_features = z.Get<int>("min_common_features");
+  o->max_speed_without_image_m_s = z.Get<double>("max_speed_without_image_m_s");
+  o->sigma_position_m = z.Get<double>("sigma_position_m");
+  o->sigma_rotation_rad = z.Get<double>("sigma_rotation_rad");
+  o->sigma_velocity_m_s = z.Get<double>("sigma_velocity_m_s");
 }
 
 void ReadSections(const YamlNode& e, EstimatorOptions* o) {
@@ -74,6 +135,8 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
   o->failure.max_rotation_jump_deg = f.Get<double>("max_rotation_jump_deg");
   o->failure.max_speed_m_s = f.Get<double>("max_speed_m_s");
   ReadSolver(e.Child("solver"), &o->solver);
+  ReadInit(e.Child("init"), &o->init);
+  ReadZeroVelocity(e.Child("zero_velocity"), &o->zero_velocity);
 }
 
 }  // namespace
@@ -105,13 +168,27 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << o.triangulation.max_depth_m << " m\n"
       << "  landmarks: outlier RMS > " << o.landmarks.outlier_threshold_px
       << " px, at most " << o.landmarks.max_landmarks << "\n"
-      << "  solver: " << ceres::LinearSolverTypeToString(o.solver.linear_solver)
+      << "  solver: "
+      << (o.solver.backend == SolverBackend::kWindow
+              ? std::string("window (inverse depths eliminated)")
+              : std::string("ceres ") +
+                    ceres::LinearSolverTypeToString(o.solver.linear_solver))
       << ", " << ceres::TrustRegionStrategyTypeToString(o.solver.trust_region)
-      << ", <= " << o.solver.max_iterations << " iterations, "
+      << ", <= " << o.solver.max_iterations
+      << " iterations, function tolerance " << o.solver.function_tolerance
+      << ", "
       << (o.solver.max_time_s > 0.0
               ? "<= " + std::to_string(o.solver.max_time_s) + " s (real time), "
               : std::string("no time limit, "))
       << o.solver.num_threads << " thread(s)\n"
+      << "  start: " << InitMethodName(o.init.method)
+      << (o.init.method == InitMethod::kAuto
+              ? std::string(" (static, then ") +
+                    (o.use_stereo ? "stereo" : "mono") + " in motion)"
+              : std::string())
+      << ", re-start after a reset "
+      << (o.init.reinitialize_after_reset ? "on" : "off") << "; zero velocity "
+      << (o.zero_velocity.enabled ? "on" : "off") << "\n"
       << "  imu stream: " << o.imu_stream.rate_hz << " Hz, range +-"
       << o.imu_stream.range.accelerometer_range << " m/s^2, +-"
       << o.imu_stream.range.gyroscope_range << " rad/s; speed limit "

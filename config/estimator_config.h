@@ -5,9 +5,9 @@
 // (estimator/estimator_options.h, where every field's unit and meaning is
 // documented). Every key is required; config/default.yaml lists them all with
 // their units. gravity_magnitude is not read here: the tools take it from
-// imu.gravity_magnitude. Solver enums use Ceres' names, case-insensitive
-// (linear_solver: dense_schur, sparse_schur, dense_qr, ...; trust_region:
-// dogleg or levenberg_marquardt).
+// imu.gravity_magnitude. solver.backend is window or ceres; the other solver
+// enums use Ceres' names, case-insensitive (linear_solver: dense_schur,
+// sparse_schur, dense_qr, ...; trust_region: dogleg or levenberg_marquardt).
 //
 // Errors are ConfigError naming the file and the key:
 //   "config/default.yaml: estimator.window_size must be >= 2 (got 1)".

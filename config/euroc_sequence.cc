@@ -7,7 +7,9 @@ EurocSequence LoadEurocSequence(const std::string& folder,
   EurocSequence sequence;
   sequence.data = ReadEurocFolder(folder, options);
   const std::string mav0 = JoinPath(folder, "mav0");
-  sequence.imu = ReadEurocImuYaml(JoinPath(mav0, "imu0/sensor.yaml"));
+  if (sequence.data.has_imu) {
+    sequence.imu = ReadEurocImuYaml(JoinPath(mav0, "imu0/sensor.yaml"));
+  }
   for (const EurocCamera& camera : sequence.data.cameras) {
     sequence.cameras.push_back(
         ReadEurocCameraYaml(JoinPath(camera.folder, "sensor.yaml")));

@@ -19,14 +19,15 @@ struct EurocSequence {
   EurocData data;
   // cameras[i] is the calibration of data.cameras[i] (camN/sensor.yaml).
   std::vector<CameraCalibration> cameras;
-  EurocImuSensor imu;  // imu0/sensor.yaml
+  EurocImuSensor imu;  // imu0/sensor.yaml (defaults when data.has_imu is false)
 };
 
 // Reads <folder>/mav0/... Throws DatasetError for the data files and
 // ConfigError for a sensor.yaml (missing, malformed, lacking a key), each
-// naming the file and the line or key.
-// options.strict: IMU stamps repeated or out of order are errors instead of
-// dropped and counted samples (dataset/euroc_reader.h).
+// naming the file and the line or key. With options.require_imu false a
+// folder without imu0/ loads without IMU; options.strict: IMU stamps repeated
+// or out of order are errors instead of dropped and counted samples
+// (EurocReadOptions in dataset/euroc_reader.h).
 EurocSequence LoadEurocSequence(const std::string& folder,
                                 const EurocReadOptions& options = {});
 

@@ -23,7 +23,11 @@ FeatureTrackerOptions ReadTracker(const YamlNode& node) {
   o.fundamental_check = node.Get<bool>("fundamental_check");
   o.fundamental_threshold_px = node.Get<double>("fundamental_threshold_px");
   o.fundamental_confidence = node.Get<double>("fundamental_confidence");
+  o.fundamental_baseline_frames = node.Get<int>("fundamental_baseline_frames");
   o.virtual_focal_px = node.Get<double>("virtual_focal_px");
+  o.anchor_refinement = node.Get<bool>("anchor_refinement");
+  o.anchor_max_correction_px = node.Get<double>("anchor_max_correction_px");
+  o.anchor_min_correlation = node.Get<double>("anchor_min_correlation");
   o.clahe = node.Get<bool>("clahe");
   o.clahe_clip_limit = node.Get<double>("clahe_clip_limit");
   o.clahe_tiles = node.Get<int>("clahe_tiles");

@@ -16,6 +16,12 @@ Eigen::Vector3d Vector3(const YamlNode& node, const std::string& key) {
 }
 
 void ReadMotion(const YamlNode& m, SimMotionOptions* o) {
+  const std::string shape = m.Get<std::string>("shape");
+  if (!ParseSimShape(shape, &o->shape)) {
+    throw ConfigError(m.Where("shape") +
+                      " must be one of ellipse, rotation, line, circle (got '" +
+                      shape + "')");
+  }
   o->still_duration_s = m.Get<double>("still_duration_s");
   o->blend_duration_s = m.Get<double>("blend_duration_s");
   o->radius_x_m = m.Get<double>("radius_x_m");
@@ -26,6 +32,8 @@ void ReadMotion(const YamlNode& m, SimMotionOptions* o) {
   o->roll_amplitude_rad = m.Get<double>("roll_amplitude_rad");
   o->pitch_amplitude_rad = m.Get<double>("pitch_amplitude_rad");
   o->yaw_amplitude_rad = m.Get<double>("yaw_amplitude_rad");
+  o->start_phase_s = m.Get<double>("start_phase_s");
+  o->attitude_rate_factor = m.Get<double>("attitude_rate_factor");
   ValidateAt(m, *o);
 }
 
@@ -98,6 +106,7 @@ std::string SimulatorOptionsToYaml(const SimulatorOptions& o) {
     << "gravity_m_s2: " << Num(o.gravity_m_s2) << "\n";
   const SimMotionOptions& m = o.motion;
   y << "motion:\n"
+    << "  shape: " << SimShapeName(m.shape) << "\n"
     << "  still_duration_s: " << Num(m.still_duration_s) << "\n"
     << "  blend_duration_s: " << Num(m.blend_duration_s) << "\n"
     << "  radius_x_m: " << Num(m.radius_x_m) << "\n"
@@ -107,7 +116,9 @@ std::string SimulatorOptionsToYaml(const SimulatorOptions& o) {
     << "  height_amplitude_m: " << Num(m.height_amplitude_m) << "\n"
     << "  roll_amplitude_rad: " << Num(m.roll_amplitude_rad) << "\n"
     << "  pitch_amplitude_rad: " << Num(m.pitch_amplitude_rad) << "\n"
-    << "  yaw_amplitude_rad: " << Num(m.yaw_amplitude_rad) << "\n";
+    << "  yaw_amplitude_rad: " << Num(m.yaw_amplitude_rad) << "\n"
+    << "  start_phase_s: " << Num(m.start_phase_s) << "\n"
+    << "  attitude_rate_factor: " << Num(m.attitude_rate_factor) << "\n";
   const SimImuOptions& i = o.imu;
   y << "imu:\n"
     << "  rate_hz: " << Num(i.rate_hz) << "\n"

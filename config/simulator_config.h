@@ -6,9 +6,10 @@
 // EuRoC's built-in ones and are not part of the file. Layout:
 //
 //   seed, start_time_ns, duration_s, gravity_m_s2
-//   motion:  still_duration_s, blend_duration_s, radius_x_m, radius_y_m,
-//            lap_period_s, height_m, height_amplitude_m, roll_amplitude_rad,
-//            pitch_amplitude_rad, yaw_amplitude_rad
+//   motion:  shape (ellipse | rotation | line | circle), still_duration_s,
+//            blend_duration_s, radius_x_m, radius_y_m, lap_period_s, height_m,
+//            height_amplitude_m, roll_amplitude_rad, pitch_amplitude_rad,
+//            yaw_amplitude_rad, start_phase_s, attitude_rate_factor
 //   imu:     rate_hz, add_noise, accelerometer_noise_density,
 //            gyroscope_noise_density, accelerometer_random_walk,
 //            gyroscope_random_walk, initial_accelerometer_bias [3],

@@ -136,4 +136,31 @@ std::vector<double> YamlNode::GetVector(const std::string& key,
   return out;
 }
 
+std::vector<std::vector<double>> YamlNode::GetRows(const std::string& key,
+                                                   int columns) const {
+  const YAML::Node n = Required(key);
+  const std::string shape =
+      " must be a list of rows of " + std::to_string(columns) + " numbers";
+  if (!n.IsSequence()) throw ConfigError(Where(key) + shape);
+  std::vector<std::vector<double>> rows;
+  for (size_t i = 0; i < n.size(); ++i) {
+    const std::string where = Where(key) + "[" + std::to_string(i) + "]";
+    if (!n[i].IsSequence() || static_cast<int>(n[i].size()) != columns) {
+      throw ConfigError(where + " must be a row of " + std::to_string(columns) +
+                        " numbers");
+    }
+    std::vector<double> row;
+    for (size_t j = 0; j < n[i].size(); ++j) {
+      try {
+        row.push_back(n[i][j].as<double>());
+      } catch (const YAML::Exception&) {
+        throw ConfigError(where + "[" + std::to_string(j) +
+                          "] must be a number (got " + Shown(n[i][j]) + ")");
+      }
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 }  // namespace vio

@@ -41,6 +41,10 @@ class YamlNode {
 
   // A required sequence of exactly `size` numbers (size < 0: any length).
   std::vector<double> GetVector(const std::string& key, int size) const;
+  // A required sequence (possibly empty) of rows of exactly `columns`
+  // numbers each, e.g. "boxes: [[0, 0, 1, 1, 1], [2, 1, 1, 1, 2]]".
+  std::vector<std::vector<double>> GetRows(const std::string& key,
+                                           int columns) const;
 
   // "file: path.key", for messages.
   std::string Where(const std::string& key) const;

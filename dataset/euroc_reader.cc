@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -71,7 +72,8 @@ EurocCamera ReadCamera(const std::string& folder, int index) {
 }
 
 int64_t EarliestStamp(const EurocData& data) {
-  int64_t start = data.imu.front().t_ns;
+  int64_t start = std::numeric_limits<int64_t>::max();
+  if (!data.imu.empty()) start = data.imu.front().t_ns;
   for (const EurocCamera& camera : data.cameras) {
     if (!camera.images.empty()) {
       start = std::min(start, camera.images.front().t_ns);
@@ -83,7 +85,7 @@ int64_t EarliestStamp(const EurocData& data) {
   if (!data.ground_truth.empty()) {
     start = std::min(start, data.ground_truth.front().t_ns);
   }
-  return start;
+  return start == std::numeric_limits<int64_t>::max() ? 0 : start;
 }
 
 }  // namespace
@@ -171,8 +173,13 @@ EurocData ReadEurocFolder(const std::string& folder,
   }
   EurocData data;
   data.folder = folder;
-  data.imu = ReadEurocImu(JoinPath(mav0, "imu0/data.csv"),
-                          options.strict ? nullptr : &data.imu_stamps);
+  // Without imu0/ at all the caller may accept the folder; an imu0/ without
+  // data.csv is always an error.
+  data.has_imu = options.require_imu || IsFolder(JoinPath(mav0, "imu0"));
+  if (data.has_imu) {
+    data.imu = ReadEurocImu(JoinPath(mav0, "imu0/data.csv"),
+                            options.strict ? nullptr : &data.imu_stamps);
+  }
   for (int n = 0;; ++n) {
     const std::string camera = JoinPath(mav0, "cam" + std::to_string(n));
     if (!IsFolder(camera)) break;

@@ -3,7 +3,8 @@
 
 // Reads the data files of a sequence folder in the EuRoC ASL layout:
 //
-//   <folder>/mav0/imu0/data.csv                      required
+//   <folder>/mav0/imu0/data.csv                      required (unless the
+//                                                    caller says otherwise)
 //   <folder>/mav0/camN/data.csv + data/*.png          images, or
 //   <folder>/mav0/camN/features.csv                   feature observations
 //   <folder>/mav0/state_groundtruth_estimate0/data.csv  optional
@@ -58,11 +59,16 @@ struct EurocReadOptions {
   // True: an IMU stamp repeated or out of order is a DatasetError naming the
   // line; false: the sample is dropped and counted (EurocData::imu_stamps).
   bool strict = false;
+  // false: a folder without imu0/ is read (data.imu empty, has_imu false).
+  // Only for callers that never use the IMU or that say so explicitly (a
+  // tool flag): an estimator must not run on a silently missing IMU.
+  bool require_imu = true;
 };
 
 // The data of a whole sequence.
 struct EurocData {
   std::string folder;          // the sequence folder (the one holding mav0/)
+  bool has_imu = false;        // imu0/data.csv was read
   std::vector<ImuSample> imu;  // strictly increasing stamps
   ImuStampReport imu_stamps;   // IMU lines dropped for their stamps
   std::vector<EurocCamera> cameras;        // cam0, cam1, ... as present
@@ -76,9 +82,11 @@ struct EurocData {
   }
 };
 
-// Reads everything listed above. Throws DatasetError when the folder, mav0/
-// or imu0/data.csv is missing, when a camN folder holds neither data.csv nor
-// features.csv, and for any bad line of any file.
+// Reads everything listed above. Throws DatasetError when the folder or
+// mav0/ is missing, when imu0/data.csv is missing (unless
+// options.require_imu is false and there is no imu0/ folder at all), when a
+// camN folder holds neither data.csv nor features.csv, and for any bad line
+// of any file.
 EurocData ReadEurocFolder(const std::string& folder,
                           const EurocReadOptions& options = {});
 

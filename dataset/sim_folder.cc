@@ -78,7 +78,7 @@ void WriteImu(const Simulation& sim, const std::string& mav0) {
   Close(y, yaml);
 }
 
-void WriteCameraYaml(const CameraCalibration& c, int index,
+void WriteCameraYaml(const CameraCalibration& c, int index, bool features,
                      const std::string& path) {
   std::ofstream y = Create(path);
   Eigen::Matrix4d T_b_c = Eigen::Matrix4d::Identity();
@@ -87,7 +87,9 @@ void WriteCameraYaml(const CameraCalibration& c, int index,
   y << "%YAML:1.0\n"
        "sensor_type: camera\n"
        "comment: tcvio simulated cam"
-    << index << " (vio_sim; observations in features.csv, no images)\n";
+    << index
+    << (features ? " (vio_sim; observations in features.csv, no images)\n"
+                 : " (vio_sim --render; rendered images in data/)\n");
   y << "T_BS:\n  cols: 4\n  rows: 4\n  data: [";
   for (int r = 0; r < 4; ++r) {
     const double row[4] = {T_b_c(r, 0), T_b_c(r, 1), T_b_c(r, 2), T_b_c(r, 3)};
@@ -109,7 +111,8 @@ void WriteCameraYaml(const CameraCalibration& c, int index,
 
 }  // namespace
 
-void WriteSimulationFolder(const Simulation& sim, const std::string& folder) {
+void WriteSimulationFolder(const Simulation& sim, const std::string& folder,
+                           const SimulationFolderOptions& options) {
   const std::string mav0 = JoinPath(folder, "mav0");
   std::error_code ec;
   if (fs::exists(mav0, ec)) {
@@ -121,9 +124,11 @@ void WriteSimulationFolder(const Simulation& sim, const std::string& folder) {
   for (int i = 0; i < cameras; ++i) {
     const std::string cam = JoinPath(mav0, "cam" + std::to_string(i));
     fs::create_directories(cam, ec);
-    WriteFeaturesCsv(JoinPath(cam, "features.csv"), sim.frames, i);
+    if (options.write_features) {
+      WriteFeaturesCsv(JoinPath(cam, "features.csv"), sim.frames, i);
+    }
     WriteCameraYaml(i == 0 ? sim.options.camera.cam0 : sim.options.camera.cam1,
-                    i, JoinPath(cam, "sensor.yaml"));
+                    i, options.write_features, JoinPath(cam, "sensor.yaml"));
   }
   const std::string gt = JoinPath(mav0, "state_groundtruth_estimate0");
   fs::create_directories(gt, ec);

@@ -21,10 +21,17 @@
 
 namespace vio {
 
+struct SimulationFolderOptions {
+  // false: no camN/features.csv, for a folder whose cameras get rendered
+  // images instead (vio_sim --render writes camN/data/ and data.csv).
+  bool write_features = true;
+};
+
 // Throws DatasetError when <folder>/mav0 already exists (an old simulation's
 // cam1 could survive beside a new mono one) or a file cannot be written.
 void WriteSimulationFolder(const Simulation& simulation,
-                           const std::string& folder);
+                           const std::string& folder,
+                           const SimulationFolderOptions& options = {});
 
 // Simulate(options), then WriteSimulationFolder; returns the simulation.
 Simulation SimulateToFolder(const SimulatorOptions& options,

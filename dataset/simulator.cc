@@ -132,17 +132,73 @@ bool SimulatorOptions::Validate(std::string* message) const {
                 "motion must stay 0.5 m inside the room (radii, height +- "
                 "amplitude against room sizes)");
   }
+  if (motion.shape == SimShape::kCircle &&
+      motion.radius_y_m + kClearance > room.half_length_x_m) {
+    return Fail(message,
+                "motion.radius_y_m (the circle's radius) must stay "
+                "0.5 m inside the room");
+  }
+  if (motion.shape == SimShape::kLine &&
+      motion.start_phase_s + duration_s > motion.lap_period_s) {
+    return Fail(message,
+                "motion.start_phase_s + duration_s must be <= "
+                "motion.lap_period_s for the line (one pass)");
+  }
   return true;
 }
 
 namespace {
 
-void SimulateImu(const SimTrajectory& trajectory, Simulation* sim) {
+// Ground truth at t_ns: the trajectory's pose and velocity, these biases.
+StampedState TruthAt(const TrajectorySource& trajectory, int64_t start_ns,
+                     int64_t t_ns, const Eigen::Vector3d& b_a,
+                     const Eigen::Vector3d& b_g) {
+  const SimState s = trajectory.At(static_cast<double>(t_ns - start_ns) * 1e-9);
+  StampedState truth;
+  truth.t_ns = t_ns;
+  truth.p_w_b = s.p_w_b;
+  truth.q_w_b = s.q_w_b;
+  truth.v_w = s.v_w;
+  truth.b_a = b_a;
+  truth.b_g = b_g;
+  return truth;
+}
+
+// The exact IMU reading at t_ns (no bias, no noise).
+ImuSample ExactImu(const TrajectorySource& trajectory, int64_t start_ns,
+                   int64_t t_ns, double gravity) {
+  const SimState s = trajectory.At(static_cast<double>(t_ns - start_ns) * 1e-9);
+  ImuSample exact;
+  exact.t_ns = t_ns;
+  exact.acc = s.q_w_b.conjugate() * (s.a_w - Eigen::Vector3d(0, 0, -gravity));
+  exact.gyr = s.w_b;
+  return exact;
+}
+
+void PassRecordedImu(const TrajectorySource& trajectory,
+                     const std::vector<ImuSample>& recorded, Simulation* sim) {
+  const SimulatorOptions& o = sim->options;
+  const int64_t end_ns = o.start_time_ns + std::llround(o.duration_s * 1e9);
+  for (const ImuSample& sample : recorded) {
+    if (sample.t_ns < o.start_time_ns || sample.t_ns > end_ns) continue;
+    sim->imu.push_back(sample);
+    sim->imu_true.push_back(
+        ExactImu(trajectory, o.start_time_ns, sample.t_ns, o.gravity_m_s2));
+    sim->ground_truth.push_back(TruthAt(trajectory, o.start_time_ns,
+                                        sample.t_ns, Eigen::Vector3d::Zero(),
+                                        Eigen::Vector3d::Zero()));
+  }
+  if (sim->imu.size() < 2) {
+    throw std::invalid_argument(
+        "simulation: the recorded IMU has fewer than 2 samples in the span");
+  }
+}
+
+void SimulateImu(const TrajectorySource& trajectory, Simulation* sim) {
   const SimulatorOptions& o = sim->options;
   const int64_t dt_ns = std::llround(1e9 / o.imu.rate_hz);
   const double dt = static_cast<double>(dt_ns) * 1e-9;
   const int64_t n = static_cast<int64_t>(std::floor(o.duration_s / dt)) + 1;
-  const Eigen::Vector3d g_w(0.0, 0.0, -o.gravity_m_s2);
   const ImuNoise& noise = o.imu.noise;
   std::mt19937 rng(StreamSeed(o.seed, kImuStream));
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -154,21 +210,13 @@ void SimulateImu(const SimTrajectory& trajectory, Simulation* sim) {
   Eigen::Vector3d b_g = o.imu.initial_gyroscope_bias;
   for (int64_t k = 0; k < n; ++k) {
     const int64_t t_ns = o.start_time_ns + k * dt_ns;
-    const SimState s = trajectory.At(static_cast<double>(k * dt_ns) * 1e-9);
-    ImuSample exact;
-    exact.t_ns = t_ns;
-    exact.acc = s.q_w_b.conjugate() * (s.a_w - g_w);
-    exact.gyr = s.w_b;
+    const ImuSample exact =
+        ExactImu(trajectory, o.start_time_ns, t_ns, o.gravity_m_s2);
     ImuSample measured = exact;
     measured.acc += b_a;
     measured.gyr += b_g;
-    StampedState truth;
-    truth.t_ns = t_ns;
-    truth.p_w_b = s.p_w_b;
-    truth.q_w_b = s.q_w_b;
-    truth.v_w = s.v_w;
-    truth.b_a = b_a;
-    truth.b_g = b_g;
+    const StampedState truth =
+        TruthAt(trajectory, o.start_time_ns, t_ns, b_a, b_g);
     if (o.imu.add_noise) {
       // Discrete white noise sigma / sqrt(dt); bias walk sigma * sqrt(dt).
       measured.acc +=
@@ -184,20 +232,44 @@ void SimulateImu(const SimTrajectory& trajectory, Simulation* sim) {
   }
 }
 
-void SimulateCameras(const SimTrajectory& trajectory, Simulation* sim) {
+// Camera stamps from the start at cam0's rate, up to last_ns.
+std::vector<int64_t> RegularStamps(const SimulatorOptions& o, int64_t last_ns) {
+  const int64_t period_ns = std::llround(1e9 / o.camera.cam0.rate_hz);
+  std::vector<int64_t> stamps;
+  for (int64_t t_ns = o.start_time_ns; t_ns <= last_ns; t_ns += period_ns) {
+    stamps.push_back(t_ns);
+  }
+  return stamps;
+}
+
+void SimulateCameras(const TrajectorySource& trajectory,
+                     const SimulationInputs& inputs, Simulation* sim) {
   const SimulatorOptions& o = sim->options;
-  std::mt19937 landmark_rng(StreamSeed(o.seed, kLandmarkStream));
-  sim->landmarks_w = MakeRoomLandmarks(o.room, &landmark_rng);
+  if (inputs.landmarks_w != nullptr) {
+    sim->landmarks_w = *inputs.landmarks_w;
+  } else {
+    std::mt19937 landmark_rng(StreamSeed(o.seed, kLandmarkStream));
+    sim->landmarks_w = MakeRoomLandmarks(o.room, &landmark_rng);
+  }
+  if (sim->landmarks_w.empty()) {
+    throw std::invalid_argument("simulation: no landmarks");
+  }
   SimFeatureTracker tracker(o.camera, &sim->landmarks_w,
                             StreamSeed(o.seed, kCameraStream));
-  const int64_t period_ns = std::llround(1e9 / o.camera.cam0.rate_hz);
   const int64_t t_d_ns = std::llround(o.camera.time_offset_s * 1e9);
+  const int64_t first_ns = sim->ground_truth.front().t_ns;
   const int64_t end_ns = sim->ground_truth.back().t_ns;
+  const std::vector<int64_t> stamps = inputs.frame_stamps_ns != nullptr
+                                          ? *inputs.frame_stamps_ns
+                                          : RegularStamps(o, end_ns - t_d_ns);
   // Frames on the camera clock whose exposure (IMU clock) lies within the
   // IMU span.
-  for (int64_t t_ns = o.start_time_ns; t_ns + t_d_ns <= end_ns;
-       t_ns += period_ns) {
-    if (t_ns + t_d_ns < o.start_time_ns) continue;
+  for (size_t k = 0; k < stamps.size(); ++k) {
+    const int64_t t_ns = stamps[k];
+    if (k > 0 && t_ns <= stamps[k - 1]) {
+      throw std::invalid_argument("simulation: frame stamps must increase");
+    }
+    if (t_ns + t_d_ns < first_ns || t_ns + t_d_ns > end_ns) continue;
     const SimState s = trajectory.At(
         static_cast<double>(t_ns + t_d_ns - o.start_time_ns) * 1e-9);
     FeatureFrame frame;
@@ -237,15 +309,26 @@ SimulationSummary Summarise(const Simulation& sim) {
 }  // namespace
 
 Simulation Simulate(const SimulatorOptions& options) {
+  return Simulate(options, SimulationInputs());
+}
+
+Simulation Simulate(const SimulatorOptions& options,
+                    const SimulationInputs& inputs) {
   std::string message;
   if (!options.Validate(&message)) {
     throw std::invalid_argument("simulator options: " + message);
   }
   Simulation sim;
   sim.options = options;
-  const SimTrajectory trajectory(options.motion);
-  SimulateImu(trajectory, &sim);
-  SimulateCameras(trajectory, &sim);
+  const SimTrajectory analytic(options.motion);
+  const TrajectorySource& trajectory =
+      inputs.trajectory != nullptr ? *inputs.trajectory : analytic;
+  if (inputs.recorded_imu != nullptr) {
+    PassRecordedImu(trajectory, *inputs.recorded_imu, &sim);
+  } else {
+    SimulateImu(trajectory, &sim);
+  }
+  SimulateCameras(trajectory, inputs, &sim);
   sim.summary = Summarise(sim);
   return sim;
 }

@@ -35,6 +35,7 @@
 
 #include "dataset/sim_trajectory.h"
 #include "dataset/trajectory.h"
+#include "dataset/trajectory_source.h"
 #include "geometry/camera_model.h"
 #include "geometry/feature_observation.h"
 #include "preintegration/imu_types.h"
@@ -123,6 +124,30 @@ struct Simulation {
 // Runs the simulation in memory. Throws std::invalid_argument with
 // Validate()'s message when the options are invalid.
 Simulation Simulate(const SimulatorOptions& options);
+
+// What a simulation may take from elsewhere (a recorded flight, see
+// dataset/flight_simulation.h) instead of making it from the options. Null
+// members are made as Simulate(options) makes them. Not owned.
+struct SimulationInputs {
+  // The motion: t seconds after options.start_time_ns; it must cover
+  // [0, options.duration_s]. Null: SimTrajectory(options.motion).
+  const TrajectorySource* trajectory = nullptr;
+  // A recorded IMU, passed through unchanged (the samples within the span
+  // [start_time_ns, start_time_ns + duration_s]); the ground truth is then
+  // at its stamps, with zero biases (the recording's are unknown here).
+  // Null: synthesised from the trajectory with options.imu.
+  const std::vector<ImuSample>* recorded_imu = nullptr;
+  // The landmarks [m]. Null: the room of options.room.
+  const std::vector<Eigen::Vector3d>* landmarks_w = nullptr;
+  // Camera stamps [ns] (increasing), used where their exposure lies in the
+  // span. Null: from start_time_ns at cam0's rate.
+  const std::vector<int64_t>* frame_stamps_ns = nullptr;
+};
+
+// The same with some parts supplied. Throws std::invalid_argument for invalid
+// options, an empty recorded IMU span, no landmarks or unordered stamps.
+Simulation Simulate(const SimulatorOptions& options,
+                    const SimulationInputs& inputs);
 
 }  // namespace vio
 

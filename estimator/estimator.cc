@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "estimator/image_velocity.h"
 #include "estimator/marginalization.h"
 #include "estimator/state_check.h"
 #include "estimator/state_prior.h"
@@ -41,19 +42,18 @@ double ThreadCpuSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// The gyroscope reading at t_ns [rad/s], linearly interpolated between the
-// samples around it (the nearest one at either end); imu is sorted by stamp.
-Eigen::Vector3d GyroAt(const std::vector<ImuSample>& imu, int64_t t_ns) {
-  if (imu.empty()) return Eigen::Vector3d::Zero();
-  const auto after = std::lower_bound(
-      imu.begin(), imu.end(), t_ns,
-      [](const ImuSample& s, int64_t t) { return s.t_ns < t; });
-  if (after == imu.end()) return imu.back().gyr;
-  if (after == imu.begin() || after->t_ns == t_ns) return after->gyr;
-  const ImuSample& before = *(after - 1);
-  const double u = static_cast<double>(t_ns - before.t_ns) /
-                   static_cast<double>(after->t_ns - before.t_ns);
-  return (1.0 - u) * before.gyr + u * after->gyr;
+// The cameras' extrinsics for the initialisers (an identity when there is
+// none: the constructor then throws before using them).
+std::vector<Eigen::Isometry3d> Extrinsics(
+    const std::vector<EstimatorCamera>& cameras) {
+  std::vector<Eigen::Isometry3d> T;
+  for (const EstimatorCamera& c : cameras) T.push_back(c.T_b_c);
+  if (T.empty()) T.push_back(Eigen::Isometry3d::Identity());
+  return T;
+}
+
+double FirstFocal(const std::vector<EstimatorCamera>& cameras) {
+  return cameras.empty() ? 460.0 : cameras[0].focal_px;
 }
 
 }  // namespace
@@ -67,7 +67,9 @@ Estimator::Estimator(const EstimatorOptions& options,
       noise_(noise),
       preintegration_(preintegration),
       cameras_(cameras),
-      static_init_(options.static_init, options.gravity_magnitude),
+      init_(options, Extrinsics(cameras), FirstFocal(cameras), noise,
+            preintegration),
+      zero_velocity_(options.zero_velocity, FirstFocal(cameras)),
       features_(options.use_stereo ? 2 : 1),
       imu_filter_(options.imu_stream.range, preintegration.max_sample_gap) {
   std::string message;
@@ -116,7 +118,8 @@ void Estimator::AddImu(const ImuSample& sample) {
   }
   NoteImuStep();
   ++summary_.imu_samples;
-  if (!initialized_) static_init_.AddSample(imu_.back());
+  zero_velocity_.AddImu(imu_.back());
+  if (!initialized_) init_.AddImu(imu_.back());
 }
 
 CameraPoseFn Estimator::PoseFn() const {
@@ -129,6 +132,7 @@ EstimatorOutput Estimator::OutputOf(const WindowFrame& f, int64_t t_ns) const {
   o.processed = true;
   o.initialized = true;
   o.keyframe = f.keyframe;
+  o.zero_velocity = f.still_link;
   o.p_w_b = Eigen::Vector3d(f.pose.data() + kPoseP);
   o.q_w_b = Eigen::Quaterniond(f.pose.data() + kPoseQ).normalized();
   o.v_w = Eigen::Vector3d(f.speed_bias.data() + kSbV);
@@ -156,6 +160,7 @@ EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
   }
   have_frame_ = true;
   last_frame_t_ns_ = frame.t_ns;
+  zero_velocity_.AddFrame(frame.t_ns, frame.observations);
   if (!initialized_) {
     if (!TryInitialize(frame, t_imu_ns)) {
       ++summary_.frames_before_init;
@@ -170,20 +175,21 @@ EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
   EstimatorOutput out;
   if (!ProcessFrame(frame, t_imu_ns, &out)) return skipped;
   ++summary_.frames_processed;
+  if (reinit_pending_) TryReinitialize(frame, t_imu_ns, &out);
   TrimImu();
   return last_output_ = out;
 }
 
 bool Estimator::TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns) {
-  StaticInitState s;
-  if (!static_init_.TryInitialize(&s)) return false;
-  EstimatorOutput start;
-  start.q_w_b = s.q_w_b;
-  start.b_a = s.b_a;
-  start.b_g = s.b_g;
-  StartWindow(frame, t_imu_ns, start, options_.state_prior.velocity_still);
+  init_.AddFrame(frame, t_imu_ns);
+  InitialWindow start;
+  if (!init_.TryStart(imu_, zero_velocity_.Check(), &summary_.init_attempts,
+                      &start) ||
+      !StartFromInitialWindow(start, /*restart=*/false)) {
+    return false;
+  }
   initialized_ = true;
-  static_init_.Clear();
+  init_.Clear();
   return true;
 }
 
@@ -198,7 +204,7 @@ void Estimator::StartWindow(const FeatureFrame& frame, int64_t t_imu_ns,
   f->t_ns = frame.t_ns;
   f->t_imu_ns = t_imu_ns;
   f->t_d_at_stamp = window_.t_d;
-  f->gyr_b = GyroAt(imu_, t_imu_ns);
+  f->gyr_b = GyroscopeAt(imu_, t_imu_ns);
   f->keyframe = true;
   f->p_w_b() = state.p_w_b;
   f->q_w_b() = state.q_w_b.normalized();
@@ -257,6 +263,7 @@ void Estimator::DropSecondNewest() {
   } else {
     newest.imu.reset();
   }
+  newest.still_link = dropped.still_link && newest.still_link;
   features_.RemoveFrame(dropped.id, PoseFn());
   frames.erase(frames.begin() + k);
 }
@@ -276,6 +283,13 @@ void Estimator::Restart(const FeatureFrame& frame, int64_t t_imu_ns,
                         Failure reason, const EstimatorOutput& state) {
   Reset(frame.t_ns, reason);
   StartWindow(frame, t_imu_ns, state, options_.state_prior.velocity_moving);
+  newest_still_ = StillNow(state.v_w.norm());
+  // The in-motion initialiser starts over from this frame on.
+  if (options_.init.reinitialize_after_reset &&
+      options_.init.method != InitMethod::kStatic) {
+    reinit_pending_ = true;
+    init_.Clear();
+  }
 }
 
 bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
@@ -296,7 +310,7 @@ bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   f->t_ns = frame.t_ns;
   f->t_imu_ns = t_imu_ns;
   f->t_d_at_stamp = window_.t_d;
-  f->gyr_b = GyroAt(imu_, t_imu_ns);
+  f->gyr_b = GyroscopeAt(imu_, t_imu_ns);
   // Prediction: p_j = p_i + v_i T + g T^2 / 2 + R_i dp,
   //             v_j = v_i + g T + R_i dv,  q_j = q_i dq.
   const Eigen::Isometry3d T_w_i = prev.T_w_b();
@@ -339,6 +353,7 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
     ResumeImuAfterGap();
     if (!AppendFrame(frame, t_imu_ns, &predicted)) return false;
   }
+  MarkStillness(window_.frames.back().get());
   // A frame starting the IMU chain after a gap stays: its interval cannot
   // be merged with the visual link before it.
   const size_t n = window_.frames.size();
@@ -366,6 +381,7 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   }
   const bool imu_ok = problem.AddImuFactors();
   const int landmarks = problem.AddVisualFactors();
+  AddZeroVelocityFactors(&problem);
   Solve(&problem);
 
   Failure failure = CheckStep(predicted, landmarks, frame.t_ns);
@@ -380,13 +396,15 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
     RefreshVisualVelocity(window_.frames.back().get());
   }
   *out = OutputOf(*window_.frames.back(), frame.t_ns);
+  if (out->zero_velocity) ++summary_.zero_velocity_frames;
   return true;
 }
 
 void Estimator::Solve(WindowProblem* problem) {
   summary_.landmarks_per_step.push_back(problem->landmarks_used());
   const double cpu_start = ThreadCpuSeconds();
-  const ceres::Solver::Summary solve = problem->Solve(options_.solver);
+  const ceres::Solver::Summary solve =
+      problem->Solve(options_.solver, &solver_);
   summary_.solver_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
   summary_.solver_time_s.push_back(solve.total_time_in_seconds);
   summary_.solver_jacobian_time_s += solve.jacobian_evaluation_time_in_seconds;

@@ -5,7 +5,10 @@
 // camera frame, feature observations (undistorted normalised coordinates and
 // image velocity); it never sees an image or a file.
 //
-// Per frame (after a static initialisation):
+// Start (estimator/initialization.h): static, monocular or stereo in motion,
+// or whichever is ready first; failed attempts are logged in the summary.
+//
+// Per frame (after the start):
 //   1. the IMU interval from the newest window frame is preintegrated and the
 //      new frame's state predicted from it;
 //   2. the frame is a keyframe when its median parallax to the last keyframe
@@ -13,9 +16,12 @@
 //   3. a non-keyframe second-newest frame is dropped: its IMU interval is
 //      merged into the new one and its observations leave the window;
 //   4. new landmarks are triangulated; one Ceres problem over the window (IMU
-//      factors, visual factors, marginalisation prior) is solved;
-//   5. failure rules are checked (reset on failure, counted and logged);
-//      outlier landmarks are removed;
+//      factors, visual factors, marginalisation prior, zero-motion factors
+//      between frames the vehicle stood still between) is solved;
+//   5. failure rules are checked (reset on failure, counted and logged;
+//      the in-motion initialiser then runs again and its states replace the
+//      restarted window, position and yaw kept); outlier landmarks are
+//      removed;
 //   6. when the newest frame is a keyframe and the window holds more than
 //      window_size keyframes, the oldest is marginalised into the prior.
 // The output never holds NaN: a failed step resets to the prediction, and a
@@ -41,11 +47,15 @@
 #include "estimator/estimator_options.h"
 #include "estimator/failure_detection.h"
 #include "estimator/feature_manager.h"
-#include "estimator/landmark_map.h"
 #include "estimator/imu_gaps.h"
+#include "estimator/init_attempt.h"
+#include "estimator/initial_window.h"
+#include "estimator/initialization.h"
+#include "estimator/landmark_map.h"
 #include "estimator/static_initializer.h"
 #include "estimator/window.h"
 #include "estimator/window_problem.h"
+#include "estimator/zero_velocity.h"
 #include "factors/marginalization_prior.h"
 #include "factors/visual_factor_options.h"
 #include "geometry/feature_observation.h"
@@ -66,6 +76,7 @@ struct EstimatorOutput {
   bool processed = false;    // false: the frame was skipped (see summary)
   bool initialized = false;  // false: the state below is not an estimate
   bool keyframe = false;
+  bool zero_velocity = false;  // held by the zero-motion constraint
   Eigen::Vector3d p_w_b = Eigen::Vector3d::Zero();  // [m]
   Eigen::Quaterniond q_w_b = Eigen::Quaterniond::Identity();
   Eigen::Vector3d v_w = Eigen::Vector3d::Zero();  // [m/s]
@@ -96,7 +107,7 @@ struct EstimatorSummary {
   int64_t frames_visual_only = 0;   // tracked on vision alone across a gap
   int64_t frames_out_of_order = 0;  // stamp not after the last: skipped
   int64_t frames_without_imu = 0;   // no IMU and no visual pose: skipped
-  int64_t frames_before_init = 0;   // before the static start was seen
+  int64_t frames_before_init = 0;   // before a start was accepted
   int64_t frames_without_observations = 0;  // processed on the IMU alone
   int64_t observations_skipped = 0;         // non-finite, unknown camera, ...
   int64_t landmarks_triangulated = 0;
@@ -118,7 +129,17 @@ struct EstimatorSummary {
   std::vector<double> marginalization_time_s;      // wall, each [s]
   std::vector<double> marginalization_cpu_time_s;  // thread CPU, each [s]
   std::vector<int> landmarks_per_step;
+  // The start: every failed attempt (at most one per method and frame), and
+  // every accepted start (the first, then re-initialisations after resets).
+  std::vector<InitAttempt> init_attempts;
+  std::vector<StartRecord> starts;
+  int64_t reinitializations = 0;     // starts after a reset
+  int64_t zero_velocity_frames = 0;  // frames held by the zero-motion factor
 };
+
+// Why the run never started (the attempts' reasons, or why none was made),
+// for a tool to print when summary.starts is empty.
+std::string DescribeNoStart(const EstimatorSummary& summary);
 
 class Estimator {
  public:
@@ -159,6 +180,24 @@ class Estimator {
 
  private:
   bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
+  // The rest of the start (estimator_start.cc): the window from an
+  // initialiser's states, the joint visual-inertial adjustment and its
+  // checks. On failure the previous window is restored, the reason logged,
+  // and false returned.
+  bool StartFromInitialWindow(const InitialWindow& start, bool restart);
+  bool BuildWindow(const InitialWindow& start);
+  InitFailure RefineStart(double* value, double* limit);
+  // After a reset while moving: feeds the in-motion initialiser and, when it
+  // succeeds, replaces the restarted window (*out updated).
+  void TryReinitialize(const FeatureFrame& frame, int64_t t_imu_ns,
+                       EstimatorOutput* out);
+  // Zero velocity (estimator_zero_velocity.cc): judges the newest frame and
+  // adds the zero-motion factors of the window's still intervals.
+  void MarkStillness(WindowFrame* newest);
+  // The detector's verdict now, with the estimated speed [m/s] deciding
+  // when the images give none.
+  bool StillNow(double speed_m_s) const;
+  void AddZeroVelocityFactors(WindowProblem* problem) const;
   void StartWindow(const FeatureFrame& frame, int64_t t_imu_ns,
                    const EstimatorOutput& state, double velocity_sigma);
   bool ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
@@ -207,7 +246,10 @@ class Estimator {
   PreintegrationOptions preintegration_;
   std::vector<EstimatorCamera> cameras_;
 
-  StaticInitializer static_init_;
+  Initialization init_;
+  ZeroVelocityDetector zero_velocity_;
+  bool newest_still_ = false;    // the last processed frame was still
+  bool reinit_pending_ = false;  // a reset while moving awaits a re-start
   FeatureManager features_;
   LandmarkMap landmark_map_;
   Window window_;
@@ -223,6 +265,7 @@ class Estimator {
   std::vector<double*> gap_bias_prior_blocks_;
   std::vector<ImuSample> imu_;
   ImuGlitchFilter imu_filter_;
+  WindowSolver solver_;  // its buffers serve every step
   bool initialized_ = false;
   int64_t next_frame_id_ = 0;
   int64_t last_keyframe_id_ = -1;

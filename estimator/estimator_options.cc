@@ -95,9 +95,14 @@ bool EstimatorOptions::Validate(std::string* message) const {
   c.Nested("imu_stream.", imu_stream.range.Validate(&range_message),
            range_message);
   c.AtLeast("solver.max_iterations", solver.max_iterations, 1);
+  c.Require(solver.function_tolerance >= 0.0 && solver.function_tolerance < 1.0,
+            "solver.function_tolerance", solver.function_tolerance,
+            "must be in [0, 1)");
   c.NonNegative("solver.max_time_s", solver.max_time_s);
   c.AtLeast("solver.num_threads", solver.num_threads, 1);
-  return c.Done(message);
+  if (!c.Done(message)) return false;
+  return init.Validate(use_stereo, window_size, message) &&
+         zero_velocity.Validate(message);
 }
 
 }  // namespace vio

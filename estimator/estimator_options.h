@@ -12,6 +12,7 @@
 
 #include <string>
 
+#include "estimator/initialization_options.h"
 #include "preintegration/imu_glitch_filter.h"
 
 namespace vio {
@@ -104,11 +105,29 @@ struct ImuStreamOptions {
   ImuRange range;
 };
 
-// Ceres options of the per-step solve.
+// Which code minimises each step's problem.
+enum class SolverBackend {
+  // tcvio's own solver of the window's structure (estimator/window_solver.h):
+  // inverse depths eliminated in closed form, one dense reduced system.
+  kWindow,
+  // ceres::Solve with linear_solver (the same factors, manifolds, losses).
+  kCeres,
+};
+
+// Options of the per-step solve.
 struct SolverOptions {
+  SolverBackend backend = SolverBackend::kWindow;
+  // Ceres' linear solver; used by the kCeres backend only.
   ceres::LinearSolverType linear_solver = ceres::DENSE_SCHUR;
+  // DOGLEG or LEVENBERG_MARQUARDT, with Ceres' meaning in both backends.
   ceres::TrustRegionStrategyType trust_region = ceres::DOGLEG;
   int max_iterations = 4;  // [-]
+  // A step ends when an accepted iteration changes the cost by less than
+  // this fraction of it [-]. Ceres' default is 1e-6; in a window that is
+  // solved again 20 times a second, iterations that move the cost by less
+  // than 0.1 % (far below its statistical spread) change the trajectory by
+  // nothing measurable (docs/speed.md) and cost a quarter of the time.
+  double function_tolerance = 1e-3;
   // Wall-clock budget per step [s]; 0: none, the iteration limit alone ends
   // a step. A budget makes the trajectory depend on the machine's load (a
   // busy machine cuts steps short), so offline replays leave it at 0 and
@@ -139,6 +158,8 @@ struct EstimatorOptions {
   StatePriorOptions state_prior;
   FailureOptions failure;
   SolverOptions solver;
+  InitOptions init;                   // how the estimator starts
+  ZeroVelocityOptions zero_velocity;  // holding still when still
 
   // True when every field is in range; otherwise false with a message that
   // starts with the offending field's name ("window_size must be >= 2 ...").

@@ -1,5 +1,7 @@
 #include "estimator/image_velocity.h"
 
+#include <algorithm>
+
 namespace vio {
 
 Eigen::Vector2d PredictedImageVelocity(const Eigen::Vector3d& p_c,
@@ -20,6 +22,19 @@ Eigen::Vector2d PredictedImageVelocity(const Eigen::Vector3d& p_c,
   // Quotient rule on xy = p_c.xy / p_c.z.
   const Eigen::Vector2d xy = p_c.head<2>() / p_c.z();
   return (dp_c.head<2>() - xy * dp_c.z()) / p_c.z();
+}
+
+Eigen::Vector3d GyroscopeAt(const std::vector<ImuSample>& imu, int64_t t_ns) {
+  if (imu.empty()) return Eigen::Vector3d::Zero();
+  const auto after = std::lower_bound(
+      imu.begin(), imu.end(), t_ns,
+      [](const ImuSample& s, int64_t t) { return s.t_ns < t; });
+  if (after == imu.end()) return imu.back().gyr;
+  if (after == imu.begin() || after->t_ns == t_ns) return after->gyr;
+  const ImuSample& before = *(after - 1);
+  const double u = static_cast<double>(t_ns - before.t_ns) /
+                   static_cast<double>(after->t_ns - before.t_ns);
+  return (1.0 - u) * before.gyr + u * after->gyr;
 }
 
 }  // namespace vio

@@ -22,6 +22,10 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "preintegration/imu_types.h"
 
 namespace vio {
 
@@ -34,6 +38,12 @@ Eigen::Vector2d PredictedImageVelocity(const Eigen::Vector3d& p_c,
                                        const Eigen::Vector3d& v_w,
                                        const Eigen::Vector3d& w_b,
                                        const Eigen::Isometry3d& T_b_c);
+
+// The gyroscope reading at t_ns [rad/s] (bias not removed), linearly
+// interpolated between the samples around it (the nearest one at either
+// end; zero for an empty buffer): the angular rate at a frame's stamp. imu is
+// sorted by stamp.
+Eigen::Vector3d GyroscopeAt(const std::vector<ImuSample>& imu, int64_t t_ns);
 
 }  // namespace vio
 

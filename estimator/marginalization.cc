@@ -1,26 +1,19 @@
 #include "estimator/marginalization.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <set>
+#include <string>
+#include <unordered_map>
 #include <utility>
 
+#include "estimator/marginalization_system.h"
 #include "factors/pose_manifold.h"
 
 namespace vio {
 namespace {
-
-using RowMajorMatrix =
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-// Where one involved (non-constant) block sits in the dense system.
-struct Slot {
-  const MarginalizationParameterBlock* block = nullptr;
-  int offset = -1;  // first tangent column
-};
 
 MarginalizationResult Failure(std::string message) {
   MarginalizationResult result;
@@ -31,19 +24,21 @@ MarginalizationResult Failure(std::string message) {
 
 // Checks the problem's structure and values; returns "" when it is valid.
 std::string CheckProblem(const MarginalizationProblem& problem) {
-  std::map<const double*, int> listed;  // values -> ambient size
+  // values -> ambient size (names are built only for an error message)
+  std::unordered_map<const double*, int> listed;
+  listed.reserve(2 * problem.parameter_blocks.size());
   for (size_t i = 0; i < problem.parameter_blocks.size(); ++i) {
     const MarginalizationParameterBlock& p = problem.parameter_blocks[i];
-    const std::string name = "parameter block " + std::to_string(i);
-    if (p.values == nullptr || p.size < 1) return name + " is empty";
+    auto name = [i] { return "parameter block " + std::to_string(i); };
+    if (p.values == nullptr || p.size < 1) return name() + " is empty";
     if (!listed.emplace(p.values, p.size).second) {
-      return name + " is listed twice";
+      return name() + " is listed twice";
     }
     if (p.manifold && p.manifold->AmbientSize() != p.size) {
-      return name + " has a manifold of another ambient size";
+      return name() + " has a manifold of another ambient size";
     }
     if (!Eigen::Map<const Eigen::VectorXd>(p.values, p.size).allFinite()) {
-      return name + " has a non-finite value";
+      return name() + " has a non-finite value";
     }
   }
   for (size_t i = 0; i < problem.marginalized.size(); ++i) {
@@ -53,109 +48,22 @@ std::string CheckProblem(const MarginalizationProblem& problem) {
   }
   for (size_t i = 0; i < problem.residual_blocks.size(); ++i) {
     const MarginalizationResidualBlock& r = problem.residual_blocks[i];
-    const std::string name = "residual block " + std::to_string(i);
-    if (r.cost == nullptr) return name + " has no cost function";
+    auto name = [i] { return "residual block " + std::to_string(i); };
+    if (r.cost == nullptr) return name() + " has no cost function";
     if (r.cost->parameter_block_sizes().size() != r.parameter_blocks.size()) {
-      return name + " has the wrong number of parameter blocks";
+      return name() + " has the wrong number of parameter blocks";
     }
-    if (r.cost->num_residuals() < 1) return name + " has no residuals";
+    if (r.cost->num_residuals() < 1) return name() + " has no residuals";
     for (size_t j = 0; j < r.parameter_blocks.size(); ++j) {
       const auto it = listed.find(r.parameter_blocks[j]);
-      if (it == listed.end()) return name + " touches an unlisted block";
+      if (it == listed.end()) return name() + " touches an unlisted block";
       if (it->second != r.cost->parameter_block_sizes()[j]) {
-        return name + ": parameter " + std::to_string(j) +
+        return name() + ": parameter " + std::to_string(j) +
                " has a size other than the listed block's";
       }
     }
   }
   return "";
-}
-
-// Marginalised blocks first, then kept ones (in listing order); constant and
-// untouched blocks get no slot. Returns the marginalised tangent size.
-int AssignSlots(const MarginalizationProblem& problem,
-                std::map<const double*, Slot>* slots,
-                std::vector<const MarginalizationParameterBlock*>* kept) {
-  std::set<const double*> touched,
-      marginalized(problem.marginalized.begin(), problem.marginalized.end());
-  for (const auto& r : problem.residual_blocks) {
-    touched.insert(r.parameter_blocks.begin(), r.parameter_blocks.end());
-  }
-  int offset = 0;
-  for (const auto& p : problem.parameter_blocks) {
-    if (!p.constant && marginalized.count(p.values)) {
-      (*slots)[p.values] = {&p, offset};
-      offset += p.TangentSize();
-    }
-  }
-  const int marginalized_size = offset;
-  for (const auto& p : problem.parameter_blocks) {
-    if (!p.constant && !marginalized.count(p.values) &&
-        touched.count(p.values)) {
-      (*slots)[p.values] = {&p, offset};
-      offset += p.TangentSize();
-      kept->push_back(&p);
-    }
-  }
-  return marginalized_size;
-}
-
-// Evaluates one residual block and adds its J^T J and -J^T r into H and b.
-// Returns false (adding nothing) when it cannot be used.
-bool Accumulate(const MarginalizationResidualBlock& r,
-                const std::map<const double*, Slot>& slots, Eigen::MatrixXd* H,
-                Eigen::VectorXd* b) {
-  const int m = r.cost->num_residuals();
-  const size_t n_blocks = r.parameter_blocks.size();
-  std::vector<RowMajorMatrix> ambient(n_blocks);
-  std::vector<double*> jacobian_ptrs(n_blocks, nullptr);
-  for (size_t i = 0; i < n_blocks; ++i) {
-    if (slots.count(r.parameter_blocks[i]) == 0) continue;  // constant
-    ambient[i].resize(m, r.cost->parameter_block_sizes()[i]);
-    jacobian_ptrs[i] = ambient[i].data();
-  }
-  Eigen::VectorXd residual(m);
-  std::vector<const double*> params(r.parameter_blocks.begin(),
-                                    r.parameter_blocks.end());
-  if (!r.cost->Evaluate(params.data(), residual.data(), jacobian_ptrs.data()) ||
-      !residual.allFinite()) {
-    return false;
-  }
-  // Robust loss, first order: rho(s) with s = |r|^2 is replaced by its
-  // Gauss-Newton model with r~ = sqrt(rho') r, J~ = sqrt(rho') J, which keeps
-  // the gradient exact (rho' J^T r). No Triggs correction (the rho'' term of
-  // the Hessian): Ceres' own Corrector drops it whenever rho'' <= 0, which
-  // holds everywhere for Huber, Cauchy, soft-L1 and arctan, so for those the
-  // prior holds exactly the Hessian Ceres would have used; where rho'' < 0 the
-  // term could make H indefinite, which a prior must never be.
-  double scale = 1.0;
-  if (r.loss != nullptr) {
-    double rho[3];
-    r.loss->Evaluate(residual.squaredNorm(), rho);
-    if (!std::isfinite(rho[1]) || rho[1] < 0.0) return false;
-    scale = std::sqrt(rho[1]);
-  }
-  residual *= scale;
-  std::vector<std::pair<int, Eigen::MatrixXd>> columns;  // offset, J~ (tangent)
-  for (size_t i = 0; i < n_blocks; ++i) {
-    if (jacobian_ptrs[i] == nullptr) continue;
-    const Slot& slot = slots.at(r.parameter_blocks[i]);
-    Eigen::MatrixXd tangent = ambient[i];
-    if (slot.block->manifold != nullptr) {
-      RowMajorMatrix plus(slot.block->size, slot.block->TangentSize());
-      slot.block->manifold->PlusJacobian(slot.block->values, plus.data());
-      tangent = ambient[i] * plus;
-    }
-    if (!tangent.allFinite()) return false;
-    columns.emplace_back(slot.offset, scale * tangent);
-  }
-  for (const auto& [oi, Ji] : columns) {
-    b->segment(oi, Ji.cols()) -= Ji.transpose() * residual;
-    for (const auto& [oj, Jj] : columns) {
-      H->block(oi, oj, Ji.cols(), Jj.cols()) += Ji.transpose() * Jj;
-    }
-  }
-  return true;
 }
 
 // Pseudo-inverse of the symmetric H_mm by eigen-decomposition; eigenvalues
@@ -201,12 +109,26 @@ int SchurComplement(const Eigen::MatrixXd& H, const Eigen::VectorXd& b,
   return deficiency;
 }
 
-// H* = V S V^T with S floored at floor * max(S); J = sqrt(S) V^T and
-// r0 = -sqrt(S)^-1 V^T b*, so that J^T J = V S V^T and J^T r0 = -b* (V is
-// orthonormal). Returns the number of floored eigenvalues, or -1 when H* holds
+// A square root J of H* and r0 = -J^-T b*, so that J^T J = H* and
+// J^T r0 = -b*. Where H* is positive definite with no Cholesky pivot below
+// floor times the largest (the estimator's case: the gauge is held by the
+// prior carried from the start): J = L^T of H* = L L^T, r0 = -L^-1 b*, a
+// triangular solve. Otherwise: H* = V S V^T with S floored at floor * max(S),
+// J = sqrt(S) V^T and r0 = -sqrt(S)^-1 V^T b* (V orthonormal). Returns the
+// number of floored eigenvalues (0 on the Cholesky path), or -1 when H* holds
 // no information at all (largest eigenvalue not > 0) or cannot be decomposed.
 int SquareRoot(const Eigen::MatrixXd& H_star, const Eigen::VectorXd& b_star,
                double floor, Eigen::MatrixXd* J, Eigen::VectorXd* r0) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(H_star);
+  if (llt.info() == Eigen::Success) {
+    const Eigen::VectorXd pivots = llt.matrixLLT().diagonal().cwiseAbs2();
+    if (pivots.minCoeff() > 0.0 &&
+        pivots.minCoeff() >= floor * pivots.maxCoeff()) {
+      *J = llt.matrixU();
+      *r0 = -llt.matrixL().solve(b_star);
+      return 0;
+    }
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H_star);
   if (eig.info() != Eigen::Success) return -1;
   const double lambda_max = eig.eigenvalues().maxCoeff();
@@ -250,13 +172,9 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
   error = CheckProblem(problem);
   if (!error.empty()) return Failure(error);
 
-  std::map<const double*, Slot> slots;
-  std::vector<const MarginalizationParameterBlock*> kept;
-  const int m_size = AssignSlots(problem, &slots, &kept);
-  int total = 0;
-  for (const auto& [values, slot] : slots) total += slot.block->TangentSize();
-  const int k_size = total - m_size;
-  if (k_size == 0) return Failure("no block is kept");
+  MarginalizationSystem system(problem);
+  if (system.kept_size() == 0) return Failure("no block is kept");
+  const std::vector<const MarginalizationParameterBlock*>& kept = system.kept();
   for (const MarginalizationParameterBlock* p : kept) {
     if (p->manifold != nullptr &&
         dynamic_cast<const PoseManifold*>(p->manifold) == nullptr) {
@@ -275,20 +193,17 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
     result.residual0.resize(0);
     return result;
   };
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(total, total);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(total);
-  for (const auto& r : problem.residual_blocks) {
-    if (Accumulate(r, slots, &H, &b)) {
-      ++result.num_residual_blocks_used;
-    } else {
-      ++result.num_skipped_residual_blocks;
-    }
-  }
+  system.Accumulate(&result.num_residual_blocks_used,
+                    &result.num_skipped_residual_blocks);
+  const int scalars_dropped =
+      system.EliminateScalars(options.marginalized_eigenvalue_floor);
 
   Eigen::MatrixXd H_star;
   Eigen::VectorXd b_star;
-  result.marginalized_rank_deficiency = SchurComplement(
-      H, b, m_size, options.marginalized_eigenvalue_floor, &H_star, &b_star);
+  result.marginalized_rank_deficiency =
+      scalars_dropped +
+      SchurComplement(system.H(), system.b(), system.dense_marginalized_size(),
+                      options.marginalized_eigenvalue_floor, &H_star, &b_star);
   if (!H_star.allFinite() || !b_star.allFinite()) {
     return fail("the Schur complement is not finite");
   }
@@ -324,8 +239,11 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
 }
 
 std::unique_ptr<MarginalizationPrior> MarginalizationResult::MakePrior() const {
-  return std::make_unique<MarginalizationPrior>(kept_blocks, jacobian,
-                                                residual0);
+  // Without floored eigenvalues J^T J is H* (to rounding): the prior need not
+  // form it again.
+  return std::make_unique<MarginalizationPrior>(
+      kept_blocks, jacobian, residual0,
+      num_floored_eigenvalues == 0 ? information : Eigen::MatrixXd());
 }
 
 MarginalizationResidualBlock PriorResidualBlock(

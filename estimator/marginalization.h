@@ -9,16 +9,23 @@
 //   1. each block's tangent Jacobian J_i = J_ambient * PlusJacobian(x) and
 //      residual r_i, scaled by sqrt(rho'(|r_i|^2)) when it has a robust loss
 //      (first order only, see marginalization.cc for why no Triggs term);
-//   2. the dense tangent-space system H = sum J_i^T J_i, b = -sum J_i^T r_i,
-//      ordered [marginalised m | kept k];
+//   2. the tangent-space system H = sum J_i^T J_i, b = -sum J_i^T r_i,
+//      ordered [marginalised m | kept k] (estimator/marginalization_system.h);
 //   3. the Schur complement
 //        H* = H_kk - H_km H_mm^+ H_mk,   b* = b_k - H_km H_mm^+ b_m,
-//      with H_mm^+ the eigen-decomposition pseudo-inverse (eigenvalues below a
-//      relative floor count as "no information" and are dropped);
-//   4. H* symmetrised, H* = V S V^T, S floored at a relative epsilon, and
-//        J = sqrt(S) V^T,   r0 = -sqrt(S)^-1 V^T b*
-//      so that J^T J = H* and J^T r0 = -b*: the prior r = r0 + J (x (-) x0)
-//      has the Schur complement's Hessian and gradient at x0.
+//      taken in two stages that give the same result: the marginalised
+//      scalars (inverse depths: size 1, no residual block shared by two)
+//      first, each a rank-one update (one with h_s not above a relative
+//      floor carries no information and is dropped), then the remaining
+//      marginalised blocks through the eigen-decomposition pseudo-inverse
+//      H_mm^+ (eigenvalues below a relative floor are dropped);
+//   4. H* symmetrised and a square root J with J^T J = H*, r0 with
+//      J^T r0 = -b*: by Cholesky, H* = L L^T, J = L^T, r0 = -L^-1 b*, when
+//      H* is positive definite and no pivot is below the floor times the
+//      largest; otherwise by H* = V S V^T, S floored at a relative epsilon,
+//        J = sqrt(S) V^T,   r0 = -sqrt(S)^-1 V^T b*.
+//      Either way the prior r = r0 + J (x (-) x0) has the Schur complement's
+//      Hessian and gradient at x0.
 // References: Sibley et al., JFR 2010; Leutenegger et al., IJRR 2015 (the
 // same construction; the prior stores a square root of H*).
 //
@@ -73,7 +80,8 @@ struct MarginalizationOptions {
   double marginalized_eigenvalue_floor = 1e-12;
   // Eigenvalues of H* are floored at this fraction of its largest, so that
   // sqrt(S)^-1 is finite; [-]. The added information, 1e-10 of the largest,
-  // is far below anything a measurement carries.
+  // is far below anything a measurement carries. The Cholesky path is taken
+  // only when every pivot of H* is at least this fraction of the largest.
   double prior_eigenvalue_floor = 1e-10;
 
   // True when both floors are finite and in [0, 1); else false + message.
@@ -97,7 +105,8 @@ struct MarginalizationResult {
   // whose loss gave a non-finite or negative rho'; left out of the prior.
   int num_skipped_residual_blocks = 0;
   int marginalized_rank_deficiency = 0;  // dropped directions of H_mm
-  int num_floored_eigenvalues = 0;       // eigenvalues of H* raised to floor
+  // Eigenvalues of H* raised to the floor; 0 on the Cholesky path.
+  int num_floored_eigenvalues = 0;
 
   // The kept blocks, in the prior's parameter order, and their description
   // (kind and x0 = the values at marginalisation time).
@@ -106,8 +115,8 @@ struct MarginalizationResult {
 
   Eigen::MatrixXd information;  // H* (symmetric, before the floor)
   Eigen::VectorXd gradient;     // -b*: the cost's gradient on the kept blocks
-  Eigen::MatrixXd jacobian;     // J = sqrt(S) V^T
-  Eigen::VectorXd residual0;    // r0 = -sqrt(S)^-1 V^T b*
+  Eigen::MatrixXd jacobian;     // J = L^T, or sqrt(S) V^T (step 4)
+  Eigen::VectorXd residual0;    // r0 = -J^-T b*
 
   bool ok() const { return status != MarginalizationStatus::kFailed; }
 

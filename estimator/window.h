@@ -32,6 +32,10 @@ struct WindowFrame {
   int64_t t_imu_ns = 0;       // IMU time of the pose: t_ns + t_d [ns]
   double t_d_at_stamp = 0.0;  // the t_d that placed the pose [s]
   bool keyframe = false;
+  // The vehicle stood still over the whole interval from the previous window
+  // frame to this one (estimator/zero_velocity.h): a zero-motion factor ties
+  // the two.
+  bool still_link = false;
   // Gyroscope reading at t_imu_ns, bias not removed [rad/s]: the angular
   // rate for the predicted image velocity (estimator/image_velocity.h).
   Eigen::Vector3d gyr_b = Eigen::Vector3d::Zero();
@@ -56,6 +60,9 @@ struct WindowFrame {
   }
   Eigen::Map<Eigen::Vector3d> b_g() {
     return Eigen::Map<Eigen::Vector3d>(&speed_bias[kSbBg]);
+  }
+  Eigen::Vector3d p_w_b_value() const {
+    return Eigen::Vector3d(pose.data() + kPoseP);
   }
   Eigen::Vector3d v_w_value() const {
     return Eigen::Vector3d(speed_bias.data() + kSbV);

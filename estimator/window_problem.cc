@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "estimator/image_velocity.h"
+#include "estimator/window_solver.h"
 #include "factors/imu_factor.h"
 #include "factors/reprojection_factor.h"
 #include "factors/robust_kernel.h"
@@ -25,6 +26,15 @@ ceres::Problem::Options ProblemOptions() {
   return o;
 }
 
+// Notes the factor's tangent-space Jacobians in the residual and hands the
+// factor on as a plain cost function.
+template <typename Factor>
+std::unique_ptr<ceres::CostFunction> Tangent(std::unique_ptr<Factor> factor,
+                                             const TangentJacobians** tangent) {
+  *tangent = factor.get();
+  return factor;
+}
+
 }  // namespace
 
 WindowProblem::WindowProblem(Window* window, FeatureManager* features,
@@ -32,8 +42,7 @@ WindowProblem::WindowProblem(Window* window, FeatureManager* features,
     : window_(window),
       features_(features),
       settings_(settings),
-      loss_(MakeLossFunction(settings.visual.robust_kernel)),
-      problem_(ProblemOptions()) {
+      loss_(MakeLossFunction(settings.visual.robust_kernel)) {
   for (auto& f : window_->frames) {
     AddBlock(f->pose.data(), 7, /*pose=*/true, /*constant=*/false);
     AddBlock(f->speed_bias.data(), 9, /*pose=*/false, /*constant=*/false);
@@ -46,27 +55,26 @@ WindowProblem::WindowProblem(Window* window, FeatureManager* features,
     AddBlock(&window_->t_d, 1, /*pose=*/false, /*constant=*/false);
     // Unobservable while the camera barely moves: keep it to a plausible
     // range instead of letting it wander.
-    problem_.SetParameterLowerBound(&window_->t_d, 0,
-                                    -settings_.max_time_offset_s);
-    problem_.SetParameterUpperBound(&window_->t_d, 0,
-                                    settings_.max_time_offset_s);
+    blocks_[&window_->t_d].bound = settings_.max_time_offset_s;
   }
 }
 
 void WindowProblem::AddBlock(double* values, int size, bool pose,
                              bool constant) {
   const ceres::Manifold* manifold = pose ? &pose_manifold_ : nullptr;
-  problem_.AddParameterBlock(values, size,
-                             const_cast<ceres::Manifold*>(manifold));
-  if (constant) problem_.SetParameterBlockConstant(values);
-  blocks_[values] = {size, manifold, constant};
+  BlockInfo& info = blocks_[values];
+  info.size = size;
+  info.manifold = manifold;
+  info.constant = constant;
+  info.index = static_cast<int>(block_order_.size());
   block_order_.push_back(values);
 }
 
 void WindowProblem::AddResidual(Residual residual) {
-  problem_.AddResidualBlock(const_cast<ceres::CostFunction*>(residual.cost),
-                            const_cast<ceres::LossFunction*>(residual.loss),
-                            residual.blocks);
+  residual.first_index = static_cast<int>(indices_.size());
+  for (const double* values : residual.blocks) {
+    indices_.push_back(blocks_.at(values).index);
+  }
   residuals_.push_back(std::move(residual));
 }
 
@@ -74,6 +82,7 @@ void WindowProblem::AddPrior(const MarginalizationPrior* prior,
                              const std::vector<double*>& blocks) {
   Residual r;
   r.cost = prior;
+  r.prior = prior;
   r.blocks = blocks;
   AddResidual(std::move(r));
 }
@@ -102,6 +111,17 @@ bool WindowProblem::AddImuFactors() {
   return true;
 }
 
+void WindowProblem::AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
+                                 const std::vector<double*>& blocks,
+                                 int64_t start_frame) {
+  Residual r;
+  r.owned = std::move(cost);
+  r.cost = r.owned.get();
+  r.blocks = blocks;
+  r.link_start_frame = start_frame;
+  AddResidual(std::move(r));
+}
+
 int WindowProblem::AddVisualFactors() {
   // Candidates: triangulated, anchored in the window, seen again later.
   std::vector<Landmark*> candidates;
@@ -127,6 +147,7 @@ void WindowProblem::AddLandmark(Landmark* l) {
   const Sighting& a = l->sightings[anchor];
   double* rho = &l->inverse_depth;
   AddBlock(rho, 1, /*pose=*/false, /*constant=*/false);
+  blocks_[rho].landmark = true;
   WindowFrame* frame_i = window_->Find(a.frame_id);
   double* ext0 = window_->extrinsics[0].data();
   double* ext1 = window_->extrinsics[1].data();
@@ -147,8 +168,9 @@ void WindowProblem::AddLandmark(Landmark* l) {
     r.target_camera = s.camera;
     r.anchor_frame = a.frame_id;
     if (s.frame_id == a.frame_id) {
-      r.owned =
-          std::make_unique<StereoReprojectionFactor>(a.xy, s.xy, sqrt_info);
+      r.owned = Tangent(
+          std::make_unique<StereoReprojectionFactor>(a.xy, s.xy, sqrt_info),
+          &r.tangent);
       r.blocks = {ext0, ext1, rho};
     } else {
       double* pose_j = window_->Find(s.frame_id)->pose.data();
@@ -156,18 +178,23 @@ void WindowProblem::AddLandmark(Landmark* l) {
         const WindowFrame& frame_j = *window_->Find(s.frame_id);
         const Eigen::Vector3d p_c_j = window_->T_w_c(s.frame_id, 0).inverse() *
                                       window_->T_w_c(a.frame_id, 0) * p_c_i;
-        r.owned = std::make_unique<TimedReprojectionFactor>(
-            TimedObservation{a.xy, velocity_i, frame_i->t_d_at_stamp},
-            TimedObservation{s.xy, MotionVelocity(frame_j, p_c_j),
-                             frame_j.t_d_at_stamp},
-            sqrt_info);
+        r.owned = Tangent(
+            std::make_unique<TimedReprojectionFactor>(
+                TimedObservation{a.xy, velocity_i, frame_i->t_d_at_stamp},
+                TimedObservation{s.xy, MotionVelocity(frame_j, p_c_j),
+                                 frame_j.t_d_at_stamp},
+                sqrt_info),
+            &r.tangent);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, rho, &window_->t_d};
       } else if (s.camera == 0) {
-        r.owned = std::make_unique<ReprojectionFactor>(a.xy, s.xy, sqrt_info);
+        r.owned =
+            Tangent(std::make_unique<ReprojectionFactor>(a.xy, s.xy, sqrt_info),
+                    &r.tangent);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, rho};
       } else {
-        r.owned = std::make_unique<StereoTwoFrameReprojectionFactor>(a.xy, s.xy,
-                                                                     sqrt_info);
+        r.owned = Tangent(std::make_unique<StereoTwoFrameReprojectionFactor>(
+                              a.xy, s.xy, sqrt_info),
+                          &r.tangent);
         r.blocks = {frame_i->pose.data(), pose_j, ext0, ext1, rho};
       }
     }
@@ -186,22 +213,85 @@ Eigen::Vector2d WindowProblem::MotionVelocity(
                                 window_->T_b_c(0));
 }
 
-ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {
+std::vector<bool> WindowProblem::TouchedBlocks() const {
   // A block no residual touches (the speed-bias of a frame placed by vision
   // across an IMU gap) is not estimated: it stays as it is.
-  std::set<const double*> touched;
-  for (const Residual& r : residuals_) {
-    touched.insert(r.blocks.begin(), r.blocks.end());
+  std::vector<bool> touched(block_order_.size(), false);
+  for (const int index : indices_) touched[index] = true;
+  return touched;
+}
+
+ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options,
+                                            WindowSolver* solver) {
+  if (options.backend == SolverBackend::kCeres) return SolveWithCeres(options);
+  std::unique_ptr<WindowSolver> local;
+  if (solver == nullptr) {
+    local = std::make_unique<WindowSolver>();
+    solver = local.get();
   }
-  for (double* values : block_order_) {
-    if (touched.count(values) == 0 && !blocks_.at(values).constant) {
-      problem_.SetParameterBlockConstant(values);
+  WindowSolverProblem& p = *solver->NewProblem();
+  const std::vector<bool> touched = TouchedBlocks();
+  for (size_t i = 0; i < block_order_.size(); ++i) {
+    double* values = block_order_[i];
+    const BlockInfo& info = blocks_.at(values);
+    WindowSolverBlock b;
+    b.values = values;
+    b.size = info.size;
+    b.manifold = info.manifold;
+    b.constant = info.constant || !touched[i];
+    b.eliminated = info.landmark;
+    if (info.bound > 0.0) {
+      b.lower = -info.bound;
+      b.upper = info.bound;
     }
+    p.blocks.push_back(b);
+  }
+  p.block_indices = indices_;
+  for (const Residual& r : residuals_) {
+    WindowSolverResidual w;
+    w.cost = r.cost;
+    w.loss = r.loss;
+    w.first_block = r.first_index;
+    w.num_blocks = static_cast<int>(r.blocks.size());
+    w.prior = r.prior;
+    w.tangent = r.tangent;
+    p.residuals.push_back(w);
+  }
+  WindowSolverOptions o;
+  o.trust_region = options.trust_region;
+  o.max_iterations = options.max_iterations;
+  o.max_time_s = options.max_time_s;
+  o.function_tolerance = options.function_tolerance;
+  return solver->Solve(o);
+}
+
+ceres::Solver::Summary WindowProblem::SolveWithCeres(
+    const SolverOptions& options) {
+  ceres::Problem problem(ProblemOptions());
+  const std::vector<bool> touched = TouchedBlocks();
+  for (size_t i = 0; i < block_order_.size(); ++i) {
+    double* values = block_order_[i];
+    const BlockInfo& info = blocks_.at(values);
+    problem.AddParameterBlock(values, info.size,
+                              const_cast<ceres::Manifold*>(info.manifold));
+    if (info.constant || !touched[i]) {
+      problem.SetParameterBlockConstant(values);
+    }
+    for (int c = 0; c < info.size && info.bound > 0.0; ++c) {
+      problem.SetParameterLowerBound(values, c, -info.bound);
+      problem.SetParameterUpperBound(values, c, info.bound);
+    }
+  }
+  for (const Residual& r : residuals_) {
+    problem.AddResidualBlock(const_cast<ceres::CostFunction*>(r.cost),
+                             const_cast<ceres::LossFunction*>(r.loss),
+                             r.blocks);
   }
   ceres::Solver::Options o;
   o.linear_solver_type = options.linear_solver;
   o.trust_region_strategy_type = options.trust_region;
   o.max_num_iterations = options.max_iterations;
+  o.function_tolerance = options.function_tolerance;
   // Without a budget Ceres' own default (1e9 s) applies: iterations only.
   if (options.max_time_s > 0.0) {
     o.max_solver_time_in_seconds = options.max_time_s;
@@ -210,7 +300,7 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options) {
   o.minimizer_progress_to_stdout = false;
   o.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
-  ceres::Solve(o, &problem_, &summary);
+  ceres::Solve(o, &problem, &summary);
   return summary;
 }
 
@@ -265,8 +355,10 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
   const WindowFrame& oldest = *window_->frames.front();
   std::set<const double*> touched;
   for (const Residual& r : residuals_) {
-    const bool prior = r.feature_id < 0 && r.imu_start_frame < 0;
+    const bool prior =
+        r.feature_id < 0 && r.imu_start_frame < 0 && r.link_start_frame < 0;
     const bool use = prior || r.imu_start_frame == oldest.id ||
+                     r.link_start_frame == oldest.id ||
                      (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
                       !excluded.Involves(r.feature_id));
     if (!use) continue;

@@ -29,14 +29,17 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <unordered_map>
 #include <vector>
 
 #include "estimator/estimator_options.h"
 #include "estimator/feature_manager.h"
 #include "estimator/marginalization.h"
 #include "estimator/window.h"
+#include "estimator/window_solver.h"
 #include "factors/marginalization_prior.h"
 #include "factors/pose_manifold.h"
+#include "factors/tangent_jacobians.h"
 #include "factors/visual_factor_options.h"
 
 namespace vio {
@@ -82,9 +85,19 @@ class WindowProblem {
   // Visual factors of up to max_landmarks landmarks, those with the most
   // sightings first (ties by feature id). Returns the landmarks used.
   int AddVisualFactors();
+  // A factor (owned from now on) between two consecutive window frames whose
+  // older one is `start_frame`, on window blocks: it leaves with that frame
+  // at its marginalisation, like the IMU factor (the zero-motion factor).
+  void AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
+                    const std::vector<double*>& blocks, int64_t start_frame);
 
-  // Solves with the options (threads as given).
-  ceres::Solver::Summary Solve(const SolverOptions& options);
+  // Solves with the options' backend: tcvio's window solver (the inverse
+  // depths eliminated, estimator/window_solver.h) or ceres::Solve (threads
+  // as given). Either way the summary is a ceres::Solver::Summary. `solver`
+  // (optional) is a window solver whose buffers outlive this problem, so
+  // that a run of steps does not allocate them again each step.
+  ceres::Solver::Summary Solve(const SolverOptions& options,
+                               WindowSolver* solver = nullptr);
 
   // Sightings whose reprojection error at the current values exceeds
   // threshold_px [px]. A landmark where most of its residuals are bad (its
@@ -106,21 +119,31 @@ class WindowProblem {
     const ceres::CostFunction* cost = nullptr;
     std::unique_ptr<ceres::CostFunction> owned;
     const ceres::LossFunction* loss = nullptr;
+    const MarginalizationPrior* prior = nullptr;  // priors only: == cost
+    const TangentJacobians* tangent = nullptr;    // visual factors: == cost
     std::vector<double*> blocks;
     int64_t feature_id = -1;    // visual residuals only
     double* rho = nullptr;      // visual residuals: the inverse depth
     int64_t target_frame = -1;  // visual residuals: the sighting's frame
     int target_camera = 0;
     int64_t anchor_frame = -1;
-    int64_t imu_start_frame = -1;  // IMU residuals only
+    int64_t imu_start_frame = -1;   // IMU residuals only
+    int64_t link_start_frame = -1;  // AddFrameLink residuals only
+    int first_index = 0;            // its blocks' indices in indices_
   };
   struct BlockInfo {
     int size = 0;
     const ceres::Manifold* manifold = nullptr;
     bool constant = false;
+    bool landmark = false;  // an inverse depth: eliminated by the solver
+    double bound = 0.0;     // > 0: every coordinate within +-bound
+    int index = -1;         // in block_order_
   };
 
   void AddBlock(double* values, int size, bool pose, bool constant);
+  ceres::Solver::Summary SolveWithCeres(const SolverOptions& options);
+  // Per block of block_order_: whether any residual has it.
+  std::vector<bool> TouchedBlocks() const;
   void AddResidual(Residual residual);
   void AddLandmark(Landmark* landmark);
   // Image velocity d xy / dt [1/s] of the camera-0 point p_c [m] in frame,
@@ -133,10 +156,10 @@ class WindowProblem {
   WindowProblemSettings settings_;
   PoseManifold pose_manifold_;
   std::unique_ptr<ceres::LossFunction> loss_;
-  ceres::Problem problem_;
   std::vector<Residual> residuals_;
-  std::map<const double*, BlockInfo> blocks_;  // lookup only
-  std::vector<double*> block_order_;           // as added
+  std::unordered_map<const double*, BlockInfo> blocks_;  // lookup only
+  std::vector<double*> block_order_;                     // as added
+  std::vector<int> indices_;  // every residual's blocks (block_order_ index)
   int num_visual_ = 0;
   int landmarks_used_ = 0;
 };

@@ -133,7 +133,8 @@ Matrix36 InverseDepthChain::d_h_d_rigid(ChainBlock block) const {
 void WriteChainJacobians(const ProjectedResidual& p,
                          const InverseDepthChain& chain,
                          std::initializer_list<ChainBlock> blocks,
-                         double const* const* parameters, double** jacobians) {
+                         double const* const* parameters, double** jacobians,
+                         JacobianSpace space) {
   int k = 0;
   for (const ChainBlock block : blocks) {
     double* jacobian = jacobians[k];
@@ -145,6 +146,15 @@ void WriteChainJacobians(const ProjectedResidual& p,
     if (block == ChainBlock::kInverseDepth) {
       Eigen::Map<Eigen::Vector2d> d_r_d_rho(jacobian);
       d_r_d_rho = p.d_r_d_h * chain.d_h_d_rho();
+    } else if (space == JacobianSpace::kTangent) {
+      // Chain rule on the right perturbation [dt, dtheta] directly:
+      //   d r / d [dt, dtheta] = d_r_d_h (2 x 3) * d_h_d_rigid (3 x 6),
+      // row-major 2 x 6; the ambient branch below is this times
+      // MinusJacobian(x), which Ceres undoes with PlusJacobian(x). Zero
+      // when inactive (d_r_d_h is zero).
+      Eigen::Map<Eigen::Matrix<double, 2, 6, Eigen::RowMajor>> d_r_d_block(
+          jacobian);
+      d_r_d_block = p.d_r_d_h * chain.d_h_d_rigid(block);
     } else if (!p.active) {
       Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>>(jacobian)
           .setZero();

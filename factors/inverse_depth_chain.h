@@ -118,14 +118,20 @@ ProjectedResidual ProjectResidual(const Eigen::Vector3d& h_c,
                                   const Eigen::Vector2d& xy_c,
                                   double sqrt_info);
 
+// Where the rigid blocks' Jacobians are written: lifted to the ambient
+// 2 x 7 row-major layout Ceres expects (PoseManifold), or left in the
+// tangent space, 2 x 6 (factors/tangent_jacobians.h).
+enum class JacobianSpace { kAmbient, kTangent };
+
 // Writes d r / d block = d_r_d_h * d_h_d_block for each requested block.
-// blocks[k] is the role of parameter block k; rigid Jacobians are lifted to
-// the ambient 2 x 7 row-major layout Ceres expects (PoseManifold), rho's is
-// 2 x 1. All are zero when the residual is inactive.
+// blocks[k] is the role of parameter block k; rigid Jacobians go into the
+// layout of `space`, rho's is 2 x 1. All are zero when the residual is
+// inactive.
 void WriteChainJacobians(const ProjectedResidual& p,
                          const InverseDepthChain& chain,
                          std::initializer_list<ChainBlock> blocks,
-                         double const* const* parameters, double** jacobians);
+                         double const* const* parameters, double** jacobians,
+                         JacobianSpace space = JacobianSpace::kAmbient);
 
 }  // namespace vio
 

@@ -30,7 +30,8 @@ int PriorBlock::TangentSize() const {
 
 MarginalizationPrior::MarginalizationPrior(std::vector<PriorBlock> blocks,
                                            const Eigen::MatrixXd& jacobian,
-                                           const Eigen::VectorXd& residual0)
+                                           const Eigen::VectorXd& residual0,
+                                           const Eigen::MatrixXd& information)
     : blocks_(std::move(blocks)), jacobian_(jacobian), residual0_(residual0) {
   if (blocks_.empty()) {
     throw std::invalid_argument("MarginalizationPrior: no parameter blocks");
@@ -67,6 +68,22 @@ MarginalizationPrior::MarginalizationPrior(std::vector<PriorBlock> blocks,
     throw std::invalid_argument("MarginalizationPrior: J or r0 not finite");
   }
   set_num_residuals(static_cast<int>(jacobian_.rows()));
+  if (information.size() == 0) {
+    information_.setZero(tangent_size, tangent_size);
+    information_.selfadjointView<Eigen::Lower>().rankUpdate(
+        jacobian_.transpose());
+    information_.triangularView<Eigen::StrictlyUpper>() =
+        information_.transpose();
+  } else if (information.rows() != tangent_size ||
+             information.cols() != tangent_size || !information.allFinite()) {
+    throw std::invalid_argument(
+        "MarginalizationPrior: J^T J must be a finite " +
+        std::to_string(tangent_size) + " x " + std::to_string(tangent_size) +
+        " matrix");
+  } else {
+    information_ = information;
+  }
+  gradient0_ = jacobian_.transpose() * residual0_;
 }
 
 bool MarginalizationPrior::Delta(double const* const* parameters,

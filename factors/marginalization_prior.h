@@ -53,11 +53,14 @@ class MarginalizationPrior final : public ceres::CostFunction {
  public:
   // jacobian: n x n' with n' = sum of the blocks' tangent sizes (columns in
   // block order) and any number of rows n >= 1; residual0: n.
+  // information: J^T J when the caller has it (n' x n'; the marginalisation
+  // does), empty to have it computed here.
   // Throws std::invalid_argument when the sizes disagree, a pose block does
   // not have 7 values, or any value is not finite.
   MarginalizationPrior(std::vector<PriorBlock> blocks,
                        const Eigen::MatrixXd& jacobian,
-                       const Eigen::VectorXd& residual0);
+                       const Eigen::VectorXd& residual0,
+                       const Eigen::MatrixXd& information = Eigen::MatrixXd());
 
   // Never throws. Returns false when a parameter value, the residual or a
   // Jacobian entry is not finite.
@@ -67,6 +70,15 @@ class MarginalizationPrior final : public ceres::CostFunction {
   const std::vector<PriorBlock>& blocks() const { return blocks_; }
   const Eigen::MatrixXd& jacobian() const { return jacobian_; }
   const Eigen::VectorXd& residual0() const { return residual0_; }
+  // J^T J and J^T r0, for a solver that forms the normal equations itself:
+  // with dx = x (-) x0 and M = d dx / d (tangent perturbation), block
+  // diagonal (I, or Jr^-1(phi) on a pose's rotation, see BlockJacobian),
+  // the prior's Gauss-Newton terms are
+  //   J_tan^T J_tan = M^T (J^T J) M,   J_tan^T r = M^T (J^T r0 + J^T J dx).
+  const Eigen::MatrixXd& information() const { return information_; }
+  const Eigen::VectorXd& gradient0() const { return gradient0_; }
+  // The first tangent column of block b in J.
+  int TangentOffset(int b) const { return tangent_offsets_[b]; }
 
   // Stacked x (-) x0 of all blocks (n' values); false when not finite.
   bool Delta(double const* const* parameters, Eigen::VectorXd* dx) const;
@@ -80,6 +92,8 @@ class MarginalizationPrior final : public ceres::CostFunction {
   std::vector<int> tangent_offsets_;  // first column of each block in J
   Eigen::MatrixXd jacobian_;          // J
   Eigen::VectorXd residual0_;         // r0
+  Eigen::MatrixXd information_;       // J^T J
+  Eigen::VectorXd gradient0_;         // J^T r0
 };
 
 }  // namespace vio

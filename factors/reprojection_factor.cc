@@ -11,6 +11,18 @@ ReprojectionFactor::ReprojectionFactor(const Eigen::Vector2d& xy_i,
 
 bool ReprojectionFactor::Evaluate(double const* const* parameters,
                                   double* residuals, double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/false);
+}
+
+bool ReprojectionFactor::EvaluateTangent(double const* const* parameters,
+                                         double* residuals,
+                                         double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/true);
+}
+
+bool ReprojectionFactor::Compute(double const* const* parameters,
+                                 double* residuals, double** jacobians,
+                                 bool tangent) const {
   const Rigid T_b_c = Rigid::FromBlock(parameters[kExtrinsic]);
   const double rho = parameters[kInverseDepth][0];
   const InverseDepthChain chain(f_i_, rho, T_b_c,
@@ -26,7 +38,8 @@ bool ReprojectionFactor::Evaluate(double const* const* parameters,
         p, chain,
         {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kSharedExtrinsic,
          ChainBlock::kInverseDepth},
-        parameters, jacobians);
+        parameters, jacobians,
+        tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
   }
   return true;
 }

@@ -25,10 +25,12 @@
 
 #include <Eigen/Core>
 
+#include "factors/tangent_jacobians.h"
+
 namespace vio {
 
-class ReprojectionFactor final
-    : public ceres::SizedCostFunction<2, 7, 7, 7, 1> {
+class ReprojectionFactor final : public ceres::SizedCostFunction<2, 7, 7, 7, 1>,
+                                 public TangentJacobians {
  public:
   enum Block { kPoseI = 0, kPoseJ = 1, kExtrinsic = 2, kInverseDepth = 3 };
 
@@ -39,8 +41,14 @@ class ReprojectionFactor final
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
+  bool EvaluateTangent(double const* const* parameters, double* residuals,
+                       double** jacobians) const override;
 
  private:
+  // Evaluate (tangent false) or EvaluateTangent (tangent true).
+  bool Compute(double const* const* parameters, double* residuals,
+               double** jacobians, bool tangent) const;
+
   Eigen::Vector3d f_i_;
   Eigen::Vector2d xy_j_;
   double sqrt_info_;

@@ -12,6 +12,18 @@ StereoReprojectionFactor::StereoReprojectionFactor(const Eigen::Vector2d& xy_c0,
 bool StereoReprojectionFactor::Evaluate(double const* const* parameters,
                                         double* residuals,
                                         double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/false);
+}
+
+bool StereoReprojectionFactor::EvaluateTangent(double const* const* parameters,
+                                               double* residuals,
+                                               double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/true);
+}
+
+bool StereoReprojectionFactor::Compute(double const* const* parameters,
+                                       double* residuals, double** jacobians,
+                                       bool tangent) const {
   // One keyframe: the body pose cancels, h_c1 = R_b_c1^T (R_b_c0 f +
   // rho (t_b_c0 - t_b_c1)).
   const InverseDepthChain chain(f_i_, parameters[kInverseDepth][0],
@@ -26,7 +38,8 @@ bool StereoReprojectionFactor::Evaluate(double const* const* parameters,
         p, chain,
         {ChainBlock::kAnchorExtrinsic, ChainBlock::kTargetExtrinsic,
          ChainBlock::kInverseDepth},
-        parameters, jacobians);
+        parameters, jacobians,
+        tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
   }
   return true;
 }
@@ -38,6 +51,19 @@ StereoTwoFrameReprojectionFactor::StereoTwoFrameReprojectionFactor(
 bool StereoTwoFrameReprojectionFactor::Evaluate(double const* const* parameters,
                                                 double* residuals,
                                                 double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/false);
+}
+
+bool StereoTwoFrameReprojectionFactor::EvaluateTangent(
+    double const* const* parameters, double* residuals,
+    double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/true);
+}
+
+bool StereoTwoFrameReprojectionFactor::Compute(double const* const* parameters,
+                                               double* residuals,
+                                               double** jacobians,
+                                               bool tangent) const {
   const InverseDepthChain chain(f_i_, parameters[kInverseDepth][0],
                                 Rigid::FromBlock(parameters[kExtrinsic0]),
                                 Rigid::FromBlock(parameters[kPoseI]),
@@ -52,7 +78,8 @@ bool StereoTwoFrameReprojectionFactor::Evaluate(double const* const* parameters,
         p, chain,
         {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kAnchorExtrinsic,
          ChainBlock::kTargetExtrinsic, ChainBlock::kInverseDepth},
-        parameters, jacobians);
+        parameters, jacobians,
+        tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
   }
   return true;
 }

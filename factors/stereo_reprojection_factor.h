@@ -22,11 +22,14 @@
 
 #include <Eigen/Core>
 
+#include "factors/tangent_jacobians.h"
+
 namespace vio {
 
 // Same keyframe. Blocks: T_b_c0 (7), T_b_c1 (7), rho [1/m] (1).
 class StereoReprojectionFactor final
-    : public ceres::SizedCostFunction<2, 7, 7, 1> {
+    : public ceres::SizedCostFunction<2, 7, 7, 1>,
+      public TangentJacobians {
  public:
   enum Block { kExtrinsic0 = 0, kExtrinsic1 = 1, kInverseDepth = 2 };
 
@@ -37,8 +40,14 @@ class StereoReprojectionFactor final
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
+  bool EvaluateTangent(double const* const* parameters, double* residuals,
+                       double** jacobians) const override;
 
  private:
+  // Evaluate (tangent false) or EvaluateTangent (tangent true).
+  bool Compute(double const* const* parameters, double* residuals,
+               double** jacobians, bool tangent) const;
+
   Eigen::Vector3d f_i_;
   Eigen::Vector2d xy_c1_;
   double sqrt_info_;
@@ -47,7 +56,8 @@ class StereoReprojectionFactor final
 // Another keyframe. Blocks: pose_i T_w_bi (7), pose_j T_w_bj (7),
 // T_b_c0 (7), T_b_c1 (7), rho [1/m] (1).
 class StereoTwoFrameReprojectionFactor final
-    : public ceres::SizedCostFunction<2, 7, 7, 7, 7, 1> {
+    : public ceres::SizedCostFunction<2, 7, 7, 7, 7, 1>,
+      public TangentJacobians {
  public:
   enum Block {
     kPoseI = 0,
@@ -65,8 +75,14 @@ class StereoTwoFrameReprojectionFactor final
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
+  bool EvaluateTangent(double const* const* parameters, double* residuals,
+                       double** jacobians) const override;
 
  private:
+  // Evaluate (tangent false) or EvaluateTangent (tangent true).
+  bool Compute(double const* const* parameters, double* residuals,
+               double** jacobians, bool tangent) const;
+
   Eigen::Vector3d f_i_;
   Eigen::Vector2d xy_j_;
   double sqrt_info_;

@@ -20,6 +20,18 @@ TimedReprojectionFactor::TimedReprojectionFactor(const TimedObservation& obs_i,
 bool TimedReprojectionFactor::Evaluate(double const* const* parameters,
                                        double* residuals,
                                        double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/false);
+}
+
+bool TimedReprojectionFactor::EvaluateTangent(double const* const* parameters,
+                                              double* residuals,
+                                              double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/true);
+}
+
+bool TimedReprojectionFactor::Compute(double const* const* parameters,
+                                      double* residuals, double** jacobians,
+                                      bool tangent) const {
   const double t_d = parameters[kTimeOffset][0];
   const Eigen::Vector2d xy_i = Shifted(obs_i_, t_d);
   const Eigen::Vector3d f_i(xy_i.x(), xy_i.y(), 1.0);
@@ -34,10 +46,12 @@ bool TimedReprojectionFactor::Evaluate(double const* const* parameters,
   if (jacobians == nullptr) return true;
 
   // Poses, extrinsic and rho: as in ReprojectionFactor, on the shifted f_i.
-  WriteChainJacobians(p, chain,
-                      {ChainBlock::kPoseI, ChainBlock::kPoseJ,
-                       ChainBlock::kSharedExtrinsic, ChainBlock::kInverseDepth},
-                      parameters, jacobians);
+  WriteChainJacobians(
+      p, chain,
+      {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kSharedExtrinsic,
+       ChainBlock::kInverseDepth},
+      parameters, jacobians,
+      tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
   if (jacobians[kTimeOffset] != nullptr) {
     // t_d moves both observations: d f_i / d t_d = (-v_i, 0), and
     // d xy_j(t_d) / d t_d = -v_j enters r with a minus sign:

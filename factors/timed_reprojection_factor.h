@@ -24,6 +24,8 @@
 
 #include <Eigen/Core>
 
+#include "factors/tangent_jacobians.h"
+
 namespace vio {
 
 // One observation with what the time offset needs.
@@ -34,7 +36,8 @@ struct TimedObservation {
 };
 
 class TimedReprojectionFactor final
-    : public ceres::SizedCostFunction<2, 7, 7, 7, 1, 1> {
+    : public ceres::SizedCostFunction<2, 7, 7, 7, 1, 1>,
+      public TangentJacobians {
  public:
   enum Block {
     kPoseI = 0,
@@ -51,8 +54,14 @@ class TimedReprojectionFactor final
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
+  bool EvaluateTangent(double const* const* parameters, double* residuals,
+                       double** jacobians) const override;
 
  private:
+  // Evaluate (tangent false) or EvaluateTangent (tangent true).
+  bool Compute(double const* const* parameters, double* residuals,
+               double** jacobians, bool tangent) const;
+
   TimedObservation obs_i_;
   TimedObservation obs_j_;
   double sqrt_info_;

@@ -96,7 +96,10 @@ std::vector<uchar> FundamentalInliers(const CameraModel& camera,
 FeatureTracker::FeatureTracker(const CameraModel& camera,
                                const FeatureTrackerOptions& options,
                                int camera_index)
-    : camera_(camera), options_(options), camera_index_(camera_index) {
+    : camera_(camera),
+      options_(options),
+      camera_index_(camera_index),
+      anchors_(options) {
   std::string message;
   if (!options_.Validate(&message)) {
     throw std::invalid_argument("FeatureTrackerOptions: " + message);
@@ -121,6 +124,8 @@ void FeatureTracker::Reset() {
   points_.clear();
   ids_.clear();
   ages_.clear();
+  anchors_.Clear();
+  history_.clear();
 }
 
 bool FeatureTracker::InsideBorder(const cv::Point2f& uv) const {
@@ -143,7 +148,7 @@ std::vector<FeatureObservation> FeatureTracker::Track(const cv::Mat& image) {
   stats_ = TrackerStats();
   const cv::Mat current = Preprocess(image);
   std::vector<cv::Mat> pyramid = BuildKltPyramid(current, options_.klt);
-  if (!pyramid_.empty()) TrackFromPrevious(pyramid);
+  if (!pyramid_.empty()) TrackFromPrevious(current, pyramid);
   Refill(current);
   image_ = current;
   pyramid_ = std::move(pyramid);
@@ -157,7 +162,8 @@ std::vector<FeatureObservation> FeatureTracker::Track(const cv::Mat& image) {
   return observations;
 }
 
-void FeatureTracker::TrackFromPrevious(const std::vector<cv::Mat>& pyramid) {
+void FeatureTracker::TrackFromPrevious(const cv::Mat& image,
+                                       const std::vector<cv::Mat>& pyramid) {
   if (points_.empty()) return;
   std::vector<cv::Point2f> forward, backward;
   std::vector<uchar> ok, ok_back;
@@ -186,6 +192,21 @@ void FeatureTracker::TrackFromPrevious(const std::vector<cv::Mat>& pyramid) {
   Compact(ok_back, &ids_);
   Compact(ok_back, &ages_);
 
+  if (options_.anchor_refinement) {
+    image.convertTo(image_float_, CV_32F);
+    const std::vector<AnchorResult> results =
+        anchors_.Refine(image_float_, ids_, &forward);
+    std::vector<uchar> keep(results.size(), 1);
+    for (size_t i = 0; i < results.size(); ++i) {
+      if (results[i] == AnchorResult::kRenewed) ++stats_.reanchored;
+      if (results[i] == AnchorResult::kDropped) keep[i] = 0;
+    }
+    stats_.lost_anchor = CountZeros(keep);
+    Compact(keep, &points_);
+    Compact(keep, &forward);
+    Compact(keep, &ids_);
+    Compact(keep, &ages_);
+  }
   if (options_.fundamental_check) {
     const std::vector<uchar> inlier =
         FundamentalInliers(camera_, points_, forward, options_);
@@ -196,6 +217,34 @@ void FeatureTracker::TrackFromPrevious(const std::vector<cv::Mat>& pyramid) {
   }
   points_ = std::move(forward);
   for (int& age : ages_) ++age;
+  if (options_.fundamental_check && options_.fundamental_baseline_frames > 0) {
+    CheckLongBaseline();
+  }
+}
+
+void FeatureTracker::CheckLongBaseline() {
+  if (static_cast<int>(history_.size()) <
+      options_.fundamental_baseline_frames) {
+    return;
+  }
+  const std::unordered_map<int64_t, cv::Point2f>& then = history_.front();
+  std::vector<cv::Point2f> before, now;
+  std::vector<size_t> index;
+  for (size_t i = 0; i < ids_.size(); ++i) {
+    const auto it = then.find(ids_[i]);
+    if (it == then.end()) continue;
+    before.push_back(it->second);
+    now.push_back(points_[i]);
+    index.push_back(i);
+  }
+  const std::vector<uchar> inlier =
+      FundamentalInliers(camera_, before, now, options_);
+  std::vector<uchar> keep(ids_.size(), 1);
+  for (size_t k = 0; k < index.size(); ++k) keep[index[k]] = inlier[k];
+  stats_.rejected_baseline = CountZeros(keep);
+  Compact(keep, &points_);
+  Compact(keep, &ids_);
+  Compact(keep, &ages_);
 }
 
 void FeatureTracker::Refill(const cv::Mat& image) {
@@ -231,6 +280,7 @@ void FeatureTracker::Refill(const cv::Mat& image) {
     for (const cv::Point2f& corner : corners) {
       if (!InsideBorder(corner)) continue;
       points.push_back(corner);
+      if (options_.anchor_refinement) anchors_.Add(next_id_, image, corner);
       ids.push_back(next_id_++);
       ages.push_back(1);
       ++stats_.created;
@@ -239,6 +289,16 @@ void FeatureTracker::Refill(const cv::Mat& image) {
   points_ = std::move(points);
   ids_ = std::move(ids);
   ages_ = std::move(ages);
+  if (options_.anchor_refinement) anchors_.Keep(ids_);
+  if (options_.fundamental_baseline_frames > 0) {
+    std::unordered_map<int64_t, cv::Point2f> positions;
+    for (size_t i = 0; i < ids_.size(); ++i) positions[ids_[i]] = points_[i];
+    history_.push_back(std::move(positions));
+    while (static_cast<int>(history_.size()) >
+           options_.fundamental_baseline_frames) {
+      history_.pop_front();
+    }
+  }
 }
 
 }  // namespace vio

@@ -5,8 +5,13 @@
 //   1. pyramidal Lucas-Kanade from the previous frame
 //   (cv::calcOpticalFlowPyrLK),
 //   2. a forward-backward check (track back, compare with the start),
-//   3. a fundamental-matrix RANSAC on undistorted points (FundamentalInliers),
-//   4. a minimum-distance mask around surviving tracks (older tracks win), and
+//   3. with anchor_refinement, an affine refinement of each track against its
+//      first appearance (frontend/anchor_refiner.h), so that its error does
+//      not add up from frame to frame nor grow as the patch deforms,
+//   4. a fundamental-matrix RANSAC on undistorted points (FundamentalInliers),
+//      against the previous frame and against the frame
+//      fundamental_baseline_frames back,
+//   5. a minimum-distance mask around surviving tracks (older tracks win), and
 //      new Shi-Tomasi corners (cv::goodFeaturesToTrack) to refill the frame to
 //      max_features.
 // Every track has a feature id that is unique and stays the same for as long
@@ -14,10 +19,13 @@
 // frontend/observation_builder fills the undistorted xy and the velocity.
 // It never reads files: the caller hands in images as cv::Mat.
 
+#include <deque>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <unordered_map>
 #include <vector>
 
+#include "frontend/anchor_refiner.h"
 #include "frontend/frontend_options.h"
 #include "geometry/camera_model.h"
 #include "geometry/feature_observation.h"
@@ -29,9 +37,12 @@ struct TrackerStats {
   int tracked = 0;    // tracks continued into this frame (after all checks)
   int lost_flow = 0;  // LK failed or ended outside the image
   int lost_forward_backward = 0;  // failed the forward-backward check
-  int rejected_fundamental = 0;   // outliers of the fundamental RANSAC
-  int dropped_crowded = 0;        // closer than min_distance to an older track
-  int created = 0;                // new Shi-Tomasi corners
+  int reanchored = 0;   // refinement against the anchor refused: renewed
+  int lost_anchor = 0;  // no longer correlates with its anchor: dropped
+  int rejected_fundamental = 0;  // outliers of the fundamental RANSAC
+  int rejected_baseline = 0;     // outliers of the RANSAC over several frames
+  int dropped_crowded = 0;       // closer than min_distance to an older track
+  int created = 0;               // new Shi-Tomasi corners
 };
 
 class FeatureTracker {
@@ -64,9 +75,13 @@ class FeatureTracker {
   const FeatureTrackerOptions& options() const { return options_; }
 
  private:
-  // Steps 1-3 on the current tracks; updates points_, ids_, ages_.
-  void TrackFromPrevious(const std::vector<cv::Mat>& pyramid);
-  // Step 4: thins crowded tracks and detects new corners in the gaps.
+  // Steps 1-4 on the current tracks into `image` (its pyramid given);
+  // updates points_, ids_, ages_.
+  void TrackFromPrevious(const cv::Mat& image,
+                         const std::vector<cv::Mat>& pyramid);
+  // The RANSAC of step 4 against the frame fundamental_baseline_frames back.
+  void CheckLongBaseline();
+  // Step 5: thins crowded tracks and detects new corners in the gaps.
   void Refill(const cv::Mat& image);
   bool InsideBorder(const cv::Point2f& uv) const;
 
@@ -81,6 +96,11 @@ class FeatureTracker {
   std::vector<int64_t> ids_;
   std::vector<int> ages_;  // frames each track has lived
   int64_t next_id_ = 0;
+  AnchorRefiner anchors_;
+  // The tracks' positions in the last fundamental_baseline_frames frames,
+  // oldest first.
+  std::deque<std::unordered_map<int64_t, cv::Point2f>> history_;
+  cv::Mat image_float_;  // the current image as 32-bit float, reused
   TrackerStats stats_;
 };
 

@@ -62,8 +62,21 @@ bool FeatureTrackerOptions::Validate(std::string* message) const {
     return Fail("fundamental_confidence", "in (0, 1)", fundamental_confidence,
                 message);
   }
+  if (fundamental_baseline_frames < 0 || fundamental_baseline_frames > 100) {
+    return Fail("fundamental_baseline_frames", "in [0, 100]",
+                fundamental_baseline_frames, message);
+  }
   if (!Positive(virtual_focal_px)) {
     return Fail("virtual_focal_px", "> 0", virtual_focal_px, message);
+  }
+  if (!(Positive(anchor_max_correction_px) &&
+        anchor_max_correction_px <= 10.0)) {
+    return Fail("anchor_max_correction_px", "in (0, 10]",
+                anchor_max_correction_px, message);
+  }
+  if (!(anchor_min_correlation >= -1.0 && anchor_min_correlation < 1.0)) {
+    return Fail("anchor_min_correlation", "in [-1, 1)", anchor_min_correlation,
+                message);
   }
   if (!Positive(clahe_clip_limit)) {
     return Fail("clahe_clip_limit", "> 0", clahe_clip_limit, message);

@@ -40,7 +40,21 @@ struct FeatureTrackerOptions {
   bool fundamental_check = true;
   double fundamental_threshold_px = 1.0;  // epipolar distance [px]
   double fundamental_confidence = 0.99;   // RANSAC confidence, in (0, 1)
-  double virtual_focal_px = 460.0;        // [px]
+  // The same RANSAC between this frame and the frame this many frames back,
+  // on the tracks seen in both: a track that slides slowly (a corner
+  // between two surfaces at different depths) stays within the threshold
+  // from one frame to the next but not over several. 0: off [frames].
+  int fundamental_baseline_frames = 5;
+  double virtual_focal_px = 460.0;  // [px]
+  // Refine every track against its first appearance with an affine warp,
+  // so that its error does not grow along the track
+  // (frontend/anchor_refiner.h). A refinement that would move the point
+  // further than anchor_max_correction_px renews the anchor instead; a
+  // patch that correlates with its anchor less than anchor_min_correlation
+  // (zero-mean normalised) ends the track.
+  bool anchor_refinement = true;
+  double anchor_max_correction_px = 2.0;  // [px], in (0, 10]
+  double anchor_min_correlation = 0.8;    // [-], in [-1, 1)
   // Contrast-limited adaptive histogram equalisation (cv::CLAHE) of every
   // image before tracking, for dark scenes.
   bool clahe = false;

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "navigation/grid.h"
+#include "navigation/open_list.h"
 
 namespace vio {
 
@@ -40,6 +41,17 @@ struct PlanResult {
   // Nodes taken out of the open list and expanded, the goal included [-].
   int64_t expansions = 0;
 };
+
+// The integer step costs of the planner for a width x height grid: a
+// straight step costs unit = 2^k, a diagonal one diagonal = round(sqrt(2) 2^k),
+// k as large as the grid allows without overflow. astar.cc says why the
+// order of these costs is the order of the path lengths (so the path found is
+// a shortest one); astar_test checks it.
+struct StepCosts {
+  uint64_t unit;
+  uint64_t diagonal;
+};
+StepCosts FixedPointStepCosts(int width, int height);
 
 // One planner per grid: it keeps its buffers between queries, so a query
 // costs nothing for the cells it does not touch.
@@ -59,20 +71,25 @@ class GridPlanner {
   Connectivity connectivity() const { return connectivity_; }
 
  private:
-  struct Node {
-    double g = 0.0;
-    int32_t parent = -1;
-    // 2 * generation_: g and parent belong to this query (open);
-    // 2 * generation_ + 1: also expanded (closed). 16 bytes a node.
-    uint32_t stamp = 0;
-  };
-  // 16 bytes: f decides the order; g (as a float) only breaks ties.
-  struct OpenEntry {
-    double f;
-    float g;
-    int32_t node;
-  };
+  // Costs and keys are integers: FixedPointStepCosts (unit_, diagonal_).
+  // One 32-bit word per cell, so that the loop touches two arrays (12
+  // bytes a cell, g_ apart: most neighbours looked at are closed, and only
+  // their word is read):
+  //   bits 0-7: the moves allowed from the cell (bit d: move d, fixed);
+  //   bits 8-10: the move d by which its father reached it (the father is
+  //     the cell - Offset(d));
+  //   bit 11: expanded (closed);
+  //   bits 12-31: the generation_ (query) that gave it a g and a father.
+  // The cell is open in this query when bits 11-31 are generation_ << 12,
+  // closed when they are that + kClosed.
+  static constexpr uint32_t kMovesMask = 0xff;
+  static constexpr int kFatherShift = 8;
+  static constexpr uint32_t kClosed = 1u << 11;
+  static constexpr int kGenerationShift = 12;
+  static constexpr uint32_t kStateMask = ~uint32_t{0} << 11;
 
+  // Move d in 0..7 (astar.cc: 4 straight, then 4 diagonal) as an index step.
+  int32_t Offset(int d) const;
   void CheckEndpoint(Cell c, const char* name) const;
   void NextGeneration();
   template <bool kEightConnected, bool kHeuristic>
@@ -84,11 +101,14 @@ class GridPlanner {
   int height_;
   int stride_;  // width + 2: one blocked cell of padding on every side
   Connectivity connectivity_;
+  uint64_t unit_;                  // cost of a straight step (1 cell)
+  uint64_t diagonal_;              // cost of a diagonal step (sqrt(2) cells)
   std::vector<uint8_t> passable_;  // padded
-  std::vector<Node> nodes_;        // padded
-  std::vector<OpenEntry> open_;    // binary heap (LaterOut order)
-  std::vector<OpenEntry> level_;   // successors at the current f (astar.cc)
-  uint32_t generation_ = 0;        // < 2^31: stamps are 2 * generation_ (+ 1)
+  std::vector<uint32_t> cell_;     // padded; the words above
+  std::vector<uint64_t> g_;        // padded; valid when stamped
+  OpenList open_;                  // navigation/open_list.h
+  std::vector<OpenList::Entry> level_;  // successors at the current f
+  uint32_t generation_ = 0;             // < 2^20
 };
 
 }  // namespace vio

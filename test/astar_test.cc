@@ -7,7 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "navigation/grid_generator.h"
 #include "testing/grid_search_reference.h"
@@ -84,6 +88,43 @@ TEST(AStar, EqualsDijkstraOnRandomGridsEightConnected) {
 
 TEST(AStar, EqualsDijkstraOnRandomGridsFourConnected) {
   CompareOnRandomGrids(Connectivity::kFour, 3000);
+}
+
+// The fixed-point step costs order paths as their lengths do (astar.cc:
+// FixedPointStepCosts), so the least-cost path A* returns is a shortest one.
+// Two simple paths of a grid differ by Δa straight and Δb diagonal steps,
+// |Δb| <= cells, and in length by Δa + Δb sqrt(2). The hardest pairs are, for
+// each Δb, the Δa = -floor(Δb sqrt(2)) and -ceil(Δb sqrt(2)) (the convergents
+// 99 - 70 sqrt(2), 577 - 408 sqrt(2), ... among them): for all of them the
+// cost difference Δa S + Δb D must have the sign of the length difference,
+// which is decided exactly by comparing Δa² with 2 Δb². Grids of 40 x 40 (the
+// random grids above), 512 x 512 (the benchmark's) and 1024 x 1024 (2^20
+// cells, the largest the bound covers).
+TEST(AStar, FixedPointCostsOrderPathsAsTheirLengths) {
+  for (const auto& [w, h] :
+       std::vector<std::pair<int, int>>{{40, 40}, {512, 512}, {1024, 1024}}) {
+    const StepCosts c = FixedPointStepCosts(w, h);
+    const int64_t cells = int64_t{w} * h;
+    const auto unit = static_cast<int64_t>(c.unit);
+    const auto diagonal = static_cast<int64_t>(c.diagonal);
+    // No f overflows: g <= D cells, h <= D (w + h).
+    ASSERT_LT(static_cast<double>(c.diagonal) * (cells + w + h), 0x1p63);
+    int64_t swapped = 0;
+    for (int64_t db = 1; db <= cells; ++db) {
+      // r = floor(db sqrt(2)) exactly: r² < 2 db² < (r + 1)².
+      auto r = static_cast<int64_t>(std::sqrt(2.0) * static_cast<double>(db));
+      while (r * r > 2 * db * db) --r;
+      while ((r + 1) * (r + 1) < 2 * db * db) ++r;
+      for (const int64_t da : {r, r + 1}) {
+        // Path P has da more straight and db fewer diagonal steps than Q.
+        const bool p_longer = da * da > 2 * db * db;
+        const bool p_costlier = da * unit > db * diagonal;
+        if (p_longer != p_costlier) ++swapped;
+      }
+    }
+    EXPECT_EQ(swapped, 0) << w << " x " << h << ": unit " << c.unit
+                          << ", diagonal " << c.diagonal;
+  }
 }
 
 double Length(const std::vector<std::string>& rows, Connectivity c) {

@@ -53,10 +53,65 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.state_prior.tilt_rad, d.state_prior.tilt_rad);
   EXPECT_EQ(o.failure.max_position_jump_m, d.failure.max_position_jump_m);
   EXPECT_EQ(o.failure.max_speed_m_s, d.failure.max_speed_m_s);
+  EXPECT_EQ(o.solver.backend, d.solver.backend);
   EXPECT_EQ(o.solver.linear_solver, d.solver.linear_solver);
   EXPECT_EQ(o.solver.trust_region, d.solver.trust_region);
   EXPECT_EQ(o.solver.max_iterations, d.solver.max_iterations);
+  EXPECT_EQ(o.solver.function_tolerance, d.solver.function_tolerance);
   EXPECT_EQ(o.solver.num_threads, 1);
+  EXPECT_EQ(o.init.method, d.init.method);
+  EXPECT_EQ(o.init.reinitialize_after_reset, d.init.reinitialize_after_reset);
+  EXPECT_EQ(o.init.max_rotation_misfit_deg, d.init.max_rotation_misfit_deg);
+  EXPECT_EQ(o.init.max_gravity_error, d.init.max_gravity_error);
+  EXPECT_EQ(o.init.max_speed_m_s, d.init.max_speed_m_s);
+  EXPECT_EQ(o.init.refine_iterations, d.init.refine_iterations);
+  EXPECT_EQ(o.init.max_refine_scale_change, d.init.max_refine_scale_change);
+  EXPECT_EQ(o.init.refine_tilt_rad, d.init.refine_tilt_rad);
+  EXPECT_EQ(o.init.mono.window_s, d.init.mono.window_s);
+  EXPECT_EQ(o.init.mono.max_frames, d.init.mono.max_frames);
+  EXPECT_EQ(o.init.mono.min_span_s, d.init.mono.min_span_s);
+  EXPECT_EQ(o.init.mono.min_parallax_px, d.init.mono.min_parallax_px);
+  EXPECT_EQ(o.init.mono.min_correspondences, d.init.mono.min_correspondences);
+  EXPECT_EQ(o.init.mono.min_inliers, d.init.mono.min_inliers);
+  EXPECT_EQ(o.init.mono.ransac_threshold_px, d.init.mono.ransac_threshold_px);
+  EXPECT_EQ(o.init.mono.min_pnp_inliers, d.init.mono.min_pnp_inliers);
+  EXPECT_EQ(o.init.mono.pnp_threshold_px, d.init.mono.pnp_threshold_px);
+  EXPECT_EQ(o.init.mono.max_reprojection_rms_px,
+            d.init.mono.max_reprojection_rms_px);
+  EXPECT_EQ(o.init.mono.bundle_iterations, d.init.mono.bundle_iterations);
+  EXPECT_EQ(o.init.mono.min_imu_excitation, d.init.mono.min_imu_excitation);
+  EXPECT_EQ(o.init.mono.max_scale_uncertainty,
+            d.init.mono.max_scale_uncertainty);
+  EXPECT_EQ(o.init.stereo.window_s, d.init.stereo.window_s);
+  EXPECT_EQ(o.init.stereo.min_span_s, d.init.stereo.min_span_s);
+  EXPECT_EQ(o.init.stereo.min_stereo_points, d.init.stereo.min_stereo_points);
+  EXPECT_EQ(o.init.stereo.min_pnp_inliers, d.init.stereo.min_pnp_inliers);
+  EXPECT_EQ(o.init.stereo.pnp_threshold_px, d.init.stereo.pnp_threshold_px);
+  const ZeroVelocityOptions& z = o.zero_velocity;
+  const ZeroVelocityOptions& dz = d.zero_velocity;
+  EXPECT_EQ(z.enabled, dz.enabled);
+  EXPECT_EQ(z.imu_window_s, dz.imu_window_s);
+  EXPECT_EQ(z.block_s, dz.block_s);
+  EXPECT_EQ(z.max_acc_std, dz.max_acc_std);
+  EXPECT_EQ(z.max_gyr_std, dz.max_gyr_std);
+  EXPECT_EQ(z.image_span_s, dz.image_span_s);
+  EXPECT_EQ(z.max_disparity_px, dz.max_disparity_px);
+  EXPECT_EQ(z.min_common_features, dz.min_common_features);
+  EXPECT_EQ(z.max_speed_without_image_m_s, dz.max_speed_without_image_m_s);
+  EXPECT_EQ(z.sigma_position_m, dz.sigma_position_m);
+  EXPECT_EQ(z.sigma_rotation_rad, dz.sigma_rotation_rad);
+  EXPECT_EQ(z.sigma_velocity_m_s, dz.sigma_velocity_m_s);
+}
+
+TEST(EstimatorConfig, EveryPresetHasTheStartAndZeroVelocityBlocks) {
+  for (const char* name : {"default.yaml", "stereo.yaml", "euroc_mono.yaml",
+                           "euroc_stereo.yaml"}) {
+    SCOPED_TRACE(name);
+    const EstimatorOptions o =
+        ReadEstimatorOptions(YamlNode::LoadFile(ConfigPath(name)));
+    EXPECT_EQ(o.init.method, InitMethod::kAuto);
+    EXPECT_TRUE(o.zero_velocity.enabled);
+  }
 }
 
 TEST(EstimatorConfig, StereoPresetTurnsStereoOn) {
@@ -77,10 +132,34 @@ TEST(EstimatorConfig, ErrorsNameFileAndKey) {
             "test.yaml: estimator.solver.linear_solver must be a Ceres "
             "linear solver such as dense_schur, sparse_schur, dense_qr (got "
             "'cholmod')");
+  EXPECT_EQ(ErrorOf(Replace(text, "backend: window", "backend: fast")),
+            "test.yaml: estimator.solver.backend must be window or ceres (got "
+            "'fast')");
+  EXPECT_EQ(ErrorOf(Replace(text, "function_tolerance: 1e-3",
+                            "function_tolerance: 1.5")),
+            "test.yaml: estimator.solver.function_tolerance must be in [0, 1) "
+            "(got 1.5)");
+  EXPECT_EQ(
+      ReadEstimatorOptions(
+          YamlNode::LoadString(
+              Replace(text, "backend: window", "backend: Ceres"), "test.yaml"))
+          .solver.backend,
+      SolverBackend::kCeres);
   EXPECT_NE(ErrorOf(Replace(text, "min_depth_m: 0.1", "min_depth_m: x"))
                 .find("estimator.triangulation.min_depth_m"),
             std::string::npos);
   EXPECT_EQ(ErrorOf("imu: {}\n"), "test.yaml: estimator is missing");
+  EXPECT_EQ(ErrorOf(Replace(text, "method: auto", "method: dynamic")),
+            "test.yaml: estimator.init.method must be one of auto, static, "
+            "mono, stereo (got 'dynamic')");
+  EXPECT_EQ(ErrorOf(Replace(text, "method: auto", "method: stereo")),
+            "test.yaml: estimator.init.method stereo needs use_stereo: true");
+  EXPECT_EQ(ErrorOf(Replace(text, "      max_frames: 11", "")),
+            "test.yaml: estimator.init.mono.max_frames is missing");
+  EXPECT_EQ(
+      ErrorOf(Replace(text, "max_disparity_px: 3.0", "max_disparity_px: -3")),
+      "test.yaml: estimator.zero_velocity.max_disparity_px must be > 0 "
+      "(got -3)");
 }
 
 }  // namespace

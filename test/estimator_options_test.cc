@@ -18,6 +18,22 @@ TEST(EstimatorOptions, DefaultsAreValidAndMatchTheDesign) {
   // Offline by default: no wall-clock budget, so the load cannot change the
   // trajectory.
   EXPECT_EQ(o.solver.max_time_s, 0.0);
+  // Start wherever the vehicle is; hold still when still.
+  EXPECT_EQ(o.init.method, InitMethod::kAuto);
+  EXPECT_TRUE(o.init.reinitialize_after_reset);
+  EXPECT_TRUE(o.zero_velocity.enabled);
+}
+
+TEST(InitMethod, NamesParseBack) {
+  for (InitMethod m : {InitMethod::kAuto, InitMethod::kStatic,
+                       InitMethod::kMono, InitMethod::kStereo}) {
+    InitMethod parsed = InitMethod::kAuto;
+    EXPECT_TRUE(ParseInitMethod(InitMethodName(m), &parsed));
+    EXPECT_EQ(parsed, m);
+  }
+  InitMethod m = InitMethod::kMono;
+  EXPECT_FALSE(ParseInitMethod("dynamic", &m));
+  EXPECT_EQ(m, InitMethod::kMono);
 }
 
 TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
@@ -40,12 +56,33 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
        "landmarks.outlier_threshold_px must be > 0"},
       {[](EstimatorOptions* o) { o->solver.max_time_s = -0.01; },
        "solver.max_time_s must be >= 0"},
+      {[](EstimatorOptions* o) { o->solver.function_tolerance = -1e-3; },
+       "solver.function_tolerance must be in [0, 1)"},
       {[](EstimatorOptions* o) { o->solver.num_threads = 0; },
        "solver.num_threads must be >= 1"},
       {[](EstimatorOptions* o) { o->failure.max_gyro_bias = 0.0; },
        "failure.max_gyro_bias must be > 0"},
       {[](EstimatorOptions* o) { o->static_init.window_s = -1.0; },
        "static_init.window_s must be > 0"},
+      {[](EstimatorOptions* o) { o->init.method = InitMethod::kStereo; },
+       "init.method stereo needs use_stereo: true"},
+      {[](EstimatorOptions* o) { o->init.mono.max_frames = 12; },
+       "init.mono.max_frames must be <= window_size + 1 (got 12)"},
+      {[](EstimatorOptions* o) { o->init.mono.min_span_s = 3.0; },
+       "init.mono.min_span_s must be <= init.mono.window_s"},
+      {[](EstimatorOptions* o) { o->init.mono.min_inliers = 5; },
+       "init.mono.min_inliers must be >= 8 (got 5)"},
+      {[](EstimatorOptions* o) { o->init.stereo.min_span_s = 0.0; },
+       "init.stereo.min_span_s must be > 0"},
+      {[](EstimatorOptions* o) { o->init.refine_iterations = -1; },
+       "init.refine_iterations must be >= 0"},
+      {[](EstimatorOptions* o) { o->zero_velocity.block_s = 0.4; },
+       "zero_velocity.block_s must be in (0, zero_velocity.imu_window_s / 2]"},
+      {[](EstimatorOptions* o) {
+         o->zero_velocity.sigma_velocity_m_s =
+             std::numeric_limits<double>::infinity();
+       },
+       "zero_velocity.sigma_velocity_m_s must be > 0"},
       {[](EstimatorOptions* o) { o->failure.max_speed_m_s = 0.0; },
        "failure.max_speed_m_s must be > 0"},
       {[](EstimatorOptions* o) { o->imu_stream.rate_hz = 0.0; },

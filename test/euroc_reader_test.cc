@@ -334,6 +334,34 @@ TEST(EurocReader, LoadsTheRealV101ExcerptWithItsMissingCam1Images) {
               1e-6);
 }
 
+TEST(EurocReader, AFolderWithoutImuLoadsOnlyWhenTheCallerSaysSo) {
+  // The real MH_01 excerpt: moving stereo images, no imu0/ at all.
+  const std::string mh01 =
+      std::string(VIO_SHARED_DIR) + "/data/euroc_MH_01_moving_6s";
+  ExpectDatasetError(
+      [&] { ReadEurocFolder(mh01); },
+      {"euroc_MH_01_moving_6s/mav0/imu0/data.csv: no such file"});
+  EurocReadOptions options;
+  options.require_imu = false;
+  const EurocData data = ReadEurocFolder(mh01, options);
+  EXPECT_FALSE(data.has_imu);
+  EXPECT_TRUE(data.imu.empty());
+  ASSERT_EQ(data.cameras.size(), 2u);
+  EXPECT_EQ(data.cameras[0].images.size(), 120u);
+  EXPECT_EQ(data.cameras[1].images.size(), 120u);
+  EXPECT_EQ(data.start_ns, data.cameras[0].images.front().t_ns);
+  // An imu0/ folder without its data.csv stays an error either way.
+  TempFolder dir;
+  WriteValidSequence(dir);
+  dir.Remove("mav0/imu0/data.csv");
+  ExpectDatasetError([&] { ReadEurocFolder(dir.path(), options); },
+                     {"mav0/imu0/data.csv: no such file"});
+  // With an IMU the option changes nothing.
+  WriteValidSequence(dir);
+  EXPECT_TRUE(ReadEurocFolder(dir.path(), options).has_imu);
+  EXPECT_EQ(ReadEurocFolder(dir.path(), options).imu.size(), 3u);
+}
+
 TEST(EurocReader, LoadsTheRealMh05ExcerptThatHasNoCameraFolder) {
   const EurocData data = ReadEurocFolder(kMh05);
   EXPECT_TRUE(data.cameras.empty());

@@ -65,6 +65,35 @@ TEST(FrontendConfig, ReadsEveryKey) {
       ReadText(DefaultWith("max_epipolar_px: 1.0", "max_epipolar_px: 2.5"))
           .stereo_matcher.max_epipolar_px,
       2.5);
+  EXPECT_FALSE(ReadText(DefaultWith("anchor_refinement: true",
+                                    "anchor_refinement: false"))
+                   .tracker.anchor_refinement);
+  EXPECT_DOUBLE_EQ(ReadText(DefaultWith("anchor_max_correction_px: 2.0",
+                                        "anchor_max_correction_px: 3.5"))
+                       .tracker.anchor_max_correction_px,
+                   3.5);
+  EXPECT_DOUBLE_EQ(ReadText(DefaultWith("anchor_min_correlation: 0.8",
+                                        "anchor_min_correlation: 0.9"))
+                       .tracker.anchor_min_correlation,
+                   0.9);
+  EXPECT_EQ(ReadText(DefaultWith("fundamental_baseline_frames: 5",
+                                 "fundamental_baseline_frames: 0"))
+                .tracker.fundamental_baseline_frames,
+            0);
+}
+
+TEST(FrontendConfig, ShippedFilesEqualTheBuiltInTracker) {
+  for (const char* name :
+       {"default.yaml", "euroc_mono.yaml", "euroc_stereo.yaml"}) {
+    const FeatureTrackerOptions o =
+        LoadFrontendOptions(ConfigFile(name)).tracker;
+    const FeatureTrackerOptions d;
+    EXPECT_EQ(o.anchor_refinement, d.anchor_refinement) << name;
+    EXPECT_EQ(o.anchor_max_correction_px, d.anchor_max_correction_px) << name;
+    EXPECT_EQ(o.anchor_min_correlation, d.anchor_min_correlation) << name;
+    EXPECT_EQ(o.fundamental_baseline_frames, d.fundamental_baseline_frames)
+        << name;
+  }
 }
 
 TEST(FrontendConfig, MissingKeyNamesFileAndKey) {

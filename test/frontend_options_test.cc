@@ -52,6 +52,12 @@ TEST(FrontendOptions, RejectsEachOutOfRangeTrackerField) {
   invalid([](FeatureTrackerOptions* o) { o->virtual_focal_px = 0; },
           "virtual_focal_px");
   invalid([](FeatureTrackerOptions* o) { o->clahe_tiles = 0; }, "clahe_tiles");
+  invalid([](FeatureTrackerOptions* o) { o->fundamental_baseline_frames = -1; },
+          "fundamental_baseline_frames");
+  invalid([](FeatureTrackerOptions* o) { o->anchor_max_correction_px = 0; },
+          "anchor_max_correction_px");
+  invalid([](FeatureTrackerOptions* o) { o->anchor_min_correlation = 1.0; },
+          "anchor_min_correlation");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -132,6 +133,68 @@ TEST(MarginalizationPrior, RejectsInconsistentSizes) {
   Eigen::VectorXd r0 = Eigen::VectorXd::Zero(8);
   r0[3] = std::numeric_limits<double>::infinity();
   EXPECT_THROW(MarginalizationPrior(blocks, J, r0), std::invalid_argument);
+}
+
+// What a solver forming the normal equations itself relies on: J^T J and
+// J^T r0 (computed, or the caller's J^T J checked for shape and finiteness),
+// and M^T (J^T J) M, M^T (J^T r0 + J^T J dx) equal to the Gauss-Newton terms
+// of the tangent Jacobian the prior's Evaluate returns.
+TEST(MarginalizationPrior, NormalEquationTermsMatchItsJacobian) {
+  std::mt19937 rng(12);
+  const FactorInstance f = PriorCase().sample(rng);
+  const auto& prior = static_cast<const MarginalizationPrior&>(*f.cost);
+  const Eigen::MatrixXd& J = prior.jacobian();
+  const double scale = (J.transpose() * J).cwiseAbs().maxCoeff();
+  EXPECT_LT((prior.information() - J.transpose() * J).cwiseAbs().maxCoeff(),
+            1e-12 * scale);
+  EXPECT_LT((prior.gradient0() - J.transpose() * prior.residual0())
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-12 * scale);
+  // The tangent Jacobian at the instance's (perturbed) values.
+  const int m = prior.num_residuals();
+  const int n = static_cast<int>(J.cols());
+  Eigen::MatrixXd J_tan(m, n);
+  std::vector<const double*> params = Pointers(f);
+  std::vector<
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+      ambient(f.blocks.size());
+  std::vector<double*> ptrs;
+  for (size_t b = 0; b < f.blocks.size(); ++b) {
+    ambient[b].resize(m, static_cast<int>(f.blocks[b].size()));
+    ptrs.push_back(ambient[b].data());
+  }
+  Eigen::VectorXd r(m);
+  ASSERT_TRUE(prior.Evaluate(params.data(), r.data(), ptrs.data()));
+  for (size_t b = 0; b < f.blocks.size(); ++b) {
+    const int o = prior.TangentOffset(static_cast<int>(b));
+    if (prior.blocks()[b].kind == PriorBlockKind::kPose) {
+      J_tan.middleCols<6>(o) =
+          ambient[b] * PoseManifold::PlusJacobianAt(f.blocks[b].data());
+    } else {
+      J_tan.middleCols(o, ambient[b].cols()) = ambient[b];
+    }
+  }
+  Eigen::VectorXd dx;
+  ASSERT_TRUE(prior.Delta(params.data(), &dx));
+  Eigen::MatrixXd H = prior.information();
+  Eigen::VectorXd g = prior.gradient0() + H * dx;
+  for (size_t b = 0; b < f.blocks.size(); ++b) {
+    if (prior.blocks()[b].kind != PriorBlockKind::kPose) continue;
+    const int c = prior.TangentOffset(static_cast<int>(b)) + 3;
+    const Eigen::Matrix3d M = RightJacobianInverse(dx.segment<3>(c));
+    H.middleCols<3>(c) = H.middleCols<3>(c) * M;
+    H.middleRows<3>(c) = M.transpose() * H.middleRows<3>(c);
+    g.segment<3>(c) = M.transpose() * g.segment<3>(c);
+  }
+  EXPECT_LT((H - J_tan.transpose() * J_tan).cwiseAbs().maxCoeff(),
+            1e-9 * scale);
+  EXPECT_LT((g - J_tan.transpose() * r).cwiseAbs().maxCoeff(),
+            1e-9 * std::max(1.0, g.cwiseAbs().maxCoeff()));
+
+  EXPECT_THROW(MarginalizationPrior(prior.blocks(), J, prior.residual0(),
+                                    Eigen::MatrixXd::Identity(n + 1, n + 1)),
+               std::invalid_argument);
 }
 
 }  // namespace

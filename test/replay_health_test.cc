@@ -8,9 +8,12 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// A run that started (at 1 s) and saw these frames.
 EstimatorSummary Frames(int64_t frames, int64_t before_init,
                         int64_t without_imu) {
   EstimatorSummary s;
+  s.starts.push_back(StartRecord());
+  s.starts.back().t_ns = 2000000000;
   s.frames = frames;
   s.frames_before_init = before_init;
   s.frames_without_imu = without_imu;
@@ -30,6 +33,51 @@ TEST(ReplayExitStatus, IsFourWhenMostFramesGotNoPose) {
             "initialisation, 131 skipped (no IMU and no visual track 131, out "
             "of order 0)");
   EXPECT_EQ(ReplayExitStatus(Frames(0, 0, 0), 0, &why), 4);
+}
+
+TEST(ReplayExitStatus, IsThreeWhenNeverInitialisedWithTheReasons) {
+  EstimatorSummary s = Frames(150, 150, 0);
+  s.starts.clear();
+  for (int k = 0; k < 3; ++k) {
+    InitAttempt a;
+    a.t_ns = 1000000000 + k;
+    a.method = InitMethod::kMono;
+    a.reason = InitFailure::kLowImuExcitation;
+    a.value = 0.02;
+    a.limit = 0.25;
+    s.init_attempts.push_back(a);
+  }
+  std::string why;
+  // 3 takes precedence over 4 (no frame has a pose either way).
+  EXPECT_EQ(ReplayExitStatus(s, 0, &why), 3);
+  EXPECT_EQ(why, "the estimator never initialised: " +
+                     DescribeInitFailures(s.init_attempts));
+  EXPECT_THAT(why, HasSubstr("too little IMU excitation"));
+  // No attempt at all: the frames had no IMU.
+  EstimatorSummary none = Frames(20, 0, 20);
+  none.starts.clear();
+  EXPECT_EQ(ReplayExitStatus(none, 0, &why), 3);
+  EXPECT_EQ(why,
+            "the estimator never initialised: no frame was covered by the IMU "
+            "(20 frames without IMU)");
+}
+
+TEST(LateStartWarning, WhenFewerThanHalfOfTheFramesInitialised) {
+  // Half initialised is not fewer than half.
+  EXPECT_EQ(LateStartWarning(Frames(10, 5, 0), 1000000000), "");
+  EXPECT_EQ(LateStartWarning(Frames(10, 0, 0), 1000000000), "");
+  EstimatorSummary late = Frames(61, 51, 0);
+  InitAttempt a;
+  a.method = InitMethod::kMono;
+  a.reason = InitFailure::kLowParallax;
+  late.init_attempts.push_back(a);
+  EXPECT_EQ(LateStartWarning(late, 1000000000),
+            "warning: only 10 of 61 frames initialised (16.4 %): the first "
+            "start came at t = 1.000 s; refused before it: " +
+                DescribeInitFailures(late.init_attempts));
+  // Never initialised: the exit status speaks, not this warning.
+  late.starts.clear();
+  EXPECT_EQ(LateStartWarning(late, 1000000000), "");
 }
 
 TEST(InputWarnings, NameEachFaultOnce) {

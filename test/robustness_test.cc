@@ -240,10 +240,13 @@ TEST(Robustness, ObservationsOutsideTheImageAreCountedAsSkipped) {
 // has parallax yet): those frames get no pose, and the window starts afresh
 // when the IMU returns.
 TEST(Robustness, AGapVisionCannotBridgeEndsInARestartAfterIt) {
+  // 1.2 s: after the static start (it needs 1 s of stillness spanned by the
+  // frames, so it comes at 1.0-1.05 s) and well before the motion (2 s), so
+  // the whole gap falls on a standing monocular window.
   const SimReplay r = Faulted(
-      WithImuFault(Sequence().imu, Fault(ImuFaultKind::kDrop, 1.0, 100)),
+      WithImuFault(Sequence().imu, Fault(ImuFaultKind::kDrop, 1.2, 100)),
       testing::Prepare(Sequence()).frames);
-  Report("100 IMU samples dropped at 1.0 s (standing still)", r);
+  Report("100 IMU samples dropped at 1.2 s (standing still)", r);
   ASSERT_EQ(r.summary.imu_gaps.size(), 1u);
   const ImuGap& gap = r.summary.imu_gaps[0];
   EXPECT_TRUE(gap.reset);

@@ -83,6 +83,79 @@ TEST(SimTrajectory, DefaultMotionIsLikeAHandHeldOrDroneSequence) {
   EXPECT_LT(max_acc, 2.0);
 }
 
+// A start in motion: no still segment, no blend, tau begins at the phase.
+SimMotionOptions InMotion(SimShape shape, double phase_s) {
+  SimMotionOptions o;
+  o.shape = shape;
+  o.still_duration_s = 0.0;
+  o.blend_duration_s = 0.0;
+  o.start_phase_s = phase_s;
+  return o;
+}
+
+TEST(SimTrajectory, EveryShapeHasConsistentDerivatives) {
+  for (SimShape shape : {SimShape::kEllipse, SimShape::kRotation,
+                         SimShape::kLine, SimShape::kCircle}) {
+    SimMotionOptions o = InMotion(shape, 1.3);
+    o.attitude_rate_factor = 2.5;
+    const SimTrajectory trajectory(o);
+    for (double t = 0.21; t < 12.0; t += 0.7) {
+      SCOPED_TRACE(std::string(SimShapeName(shape)) + " t " +
+                   std::to_string(t));
+      const SimState state = trajectory.At(t);
+      const Numeric numeric = Differentiate(trajectory, t);
+      EXPECT_LT((state.v_w - numeric.v).norm(), 1e-8);
+      EXPECT_LT((state.a_w - numeric.a).norm(), 1e-6);
+      EXPECT_LT((state.w_b - numeric.w_b).norm(), 1e-7);
+    }
+  }
+}
+
+TEST(SimTrajectory, StartPhaseStartsInMotionWhereTheLapIs) {
+  const SimTrajectory from_zero(InMotion(SimShape::kEllipse, 0.0));
+  const SimTrajectory from_phase(InMotion(SimShape::kEllipse, 4.0));
+  const SimState a = from_zero.At(4.0);
+  const SimState b = from_phase.At(0.0);
+  EXPECT_LT((a.p_w_b - b.p_w_b).norm(), 1e-12);
+  EXPECT_LT((a.v_w - b.v_w).norm(), 1e-12);
+  EXPECT_GT(b.v_w.norm(), 0.5);  // moving from the first instant
+  EXPECT_LT(a.q_w_b.angularDistance(b.q_w_b), 1e-12);
+}
+
+TEST(SimTrajectory, DegenerateShapesHaveNoExcitationWhereTheyShouldNot) {
+  const Eigen::Vector3d g_w(0.0, 0.0, -9.81);
+  // Pure rotation: the IMU stays where it is, the attitude keeps turning.
+  const SimTrajectory rotation(InMotion(SimShape::kRotation, 2.0));
+  double max_rate = 0.0;
+  for (double t = 0.0; t < 10.0; t += 0.1) {
+    const SimState s = rotation.At(t);
+    EXPECT_LT((s.p_w_b - rotation.At(0.0).p_w_b).norm(), 1e-12);
+    EXPECT_EQ(s.v_w, Eigen::Vector3d::Zero());
+    max_rate = std::max(max_rate, s.w_b.norm());
+  }
+  EXPECT_GT(max_rate, 0.3);
+  // Constant velocity, constant attitude: the IMU reads gravity only.
+  const SimTrajectory line(InMotion(SimShape::kLine, 0.0));
+  for (double t = 0.0; t < 10.0; t += 0.1) {
+    const SimState s = line.At(t);
+    EXPECT_LT((s.v_w - line.At(0.0).v_w).norm(), 1e-12);
+    EXPECT_EQ(s.a_w, Eigen::Vector3d::Zero());
+    EXPECT_EQ(s.w_b, Eigen::Vector3d::Zero());
+  }
+  EXPECT_NEAR(line.At(0.0).v_w.norm(), 0.4, 1e-12);  // 2 * 3 m / 15 s
+  // Constant-speed turn with the heading along the path: the specific force
+  // R^T (a - g) is the same vector in the body frame all along.
+  const SimTrajectory circle(InMotion(SimShape::kCircle, 0.0));
+  const SimState c0 = circle.At(0.0);
+  const Eigen::Vector3d f0 = c0.q_w_b.conjugate() * (c0.a_w - g_w);
+  for (double t = 0.0; t < 10.0; t += 0.1) {
+    const SimState s = circle.At(t);
+    EXPECT_LT((s.q_w_b.conjugate() * (s.a_w - g_w) - f0).norm(), 1e-9);
+    EXPECT_NEAR(s.p_w_b.z(), 1.2, 1e-12);
+  }
+  EXPECT_GT(c0.a_w.norm(), 0.3);  // yet it does accelerate (centripetal)
+}
+
 TEST(SimTrajectory, InvalidOptionsAreRejectedWithTheFieldName) {
   SimMotionOptions options;
   std::string message;

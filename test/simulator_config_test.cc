@@ -71,6 +71,9 @@ TEST(SimulatorConfig, PrintedOptionsLoadBackUnchanged) {
   options.seed = 4000000000u;
   options.duration_s = 12.345;
   options.motion.yaw_amplitude_rad = 0.1234567890123;
+  options.motion.shape = SimShape::kCircle;
+  options.motion.start_phase_s = 3.25;
+  options.motion.attitude_rate_factor = 2.5;
   options.imu.add_noise = false;
   options.imu.initial_gyroscope_bias = {1e-3, -2e-3, 3.25e-3};
   options.camera.stereo = true;
@@ -82,6 +85,9 @@ TEST(SimulatorConfig, PrintedOptionsLoadBackUnchanged) {
   EXPECT_EQ(SimulatorOptionsToYaml(back), SimulatorOptionsToYaml(options));
   EXPECT_EQ(back.seed, 4000000000u);
   EXPECT_EQ(back.motion.yaw_amplitude_rad, 0.1234567890123);
+  EXPECT_EQ(back.motion.shape, SimShape::kCircle);
+  EXPECT_EQ(back.motion.start_phase_s, 3.25);
+  EXPECT_EQ(back.motion.attitude_rate_factor, 2.5);
   EXPECT_EQ(back.imu.initial_gyroscope_bias.z(), 3.25e-3);
 }
 
@@ -107,6 +113,16 @@ TEST(SimulatorConfig, MissingWrongOrOutOfRangeKeysAreNamed) {
       {"seed: 1", "seed: -3", "sim.yaml: seed must be in [0, 2^32) (got -3)"},
       {"  radius_x_m: 3", "  radius_x_m: 6.8",
        "sim.yaml: motion must stay 0.5 m inside the room"},
+      {"  shape: ellipse", "  shape: spiral",
+       "sim.yaml: motion.shape must be one of ellipse, rotation, line, circle "
+       "(got 'spiral')"},
+      {"  start_phase_s: 0", "  start_phase_s: -1",
+       "sim.yaml: motion.start_phase_s must be >= 0"},
+      {"  attitude_rate_factor: 1", "  attitude_rate_factor: 0",
+       "sim.yaml: motion.attitude_rate_factor must be > 0"},
+      {"  shape: ellipse", "  shape: line",
+       "sim.yaml: motion.start_phase_s + duration_s must be <= "
+       "motion.lap_period_s for the line"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.message);

@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <random>
 
 #include "factors/check/factor_cases.h"
 #include "factors/check/jacobian_check.h"
 #include "factors/check/visual_scene.h"
 #include "factors/inverse_depth_chain.h"
+#include "factors/tangent_jacobians.h"
 
 namespace vio {
 namespace {
@@ -114,6 +116,47 @@ TEST_P(VisualFactorTest, GradientCheckerWithPoseManifoldAgrees) {
     EXPECT_TRUE(checker.Probe(params.data(), 1e-6, &results))
         << c.name << " trial " << t << "\n"
         << results.error_log;
+  }
+}
+
+// What a tangent-space solver receives (factors/tangent_jacobians.h) is
+// exactly what Ceres gets from the ambient Jacobian: J_amb * PlusJacobian,
+// with the same residual. On mixed states: the degenerate ones (inactive,
+// zero Jacobians) included.
+TEST_P(VisualFactorTest, TangentJacobiansEqualAmbientTimesPlusJacobian) {
+  const FactorCase c = MakeCase(VisualGeometry::kMixed);
+  std::mt19937 rng(5);
+  for (int t = 0; t < 100; ++t) {
+    const FactorInstance f = c.sample(rng);
+    const auto* tangent = dynamic_cast<const TangentJacobians*>(f.cost.get());
+    ASSERT_NE(tangent, nullptr) << c.name;
+    const Evaluation ambient = Evaluate(f);
+    ASSERT_TRUE(ambient.ok);
+    const int m = f.cost->num_residuals();
+    std::vector<const double*> params;
+    std::vector<RowMajorMatrix> J(f.blocks.size());
+    std::vector<double*> ptrs;
+    for (size_t b = 0; b < f.blocks.size(); ++b) {
+      params.push_back(f.blocks[b].data());
+      const int size = static_cast<int>(f.blocks[b].size());
+      J[b].setConstant(m, f.manifolds[b] ? f.manifolds[b]->TangentSize() : size,
+                       -12345.0);
+      ptrs.push_back(J[b].data());
+    }
+    Eigen::VectorXd r(m);
+    ASSERT_TRUE(tangent->EvaluateTangent(params.data(), r.data(), ptrs.data()));
+    EXPECT_EQ(r, ambient.r) << c.name << " trial " << t;
+    for (size_t b = 0; b < f.blocks.size(); ++b) {
+      RowMajorMatrix expected = ambient.jacobians[b];
+      if (f.manifolds[b]) {
+        RowMajorMatrix plus(f.blocks[b].size(), f.manifolds[b]->TangentSize());
+        f.manifolds[b]->PlusJacobian(f.blocks[b].data(), plus.data());
+        expected = ambient.jacobians[b] * plus;
+      }
+      const double scale = std::max(1.0, expected.cwiseAbs().maxCoeff());
+      EXPECT_LT((J[b] - expected).cwiseAbs().maxCoeff(), 1e-12 * scale)
+          << c.name << " block " << b << " trial " << t;
+    }
   }
 }
 

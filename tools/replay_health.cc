@@ -145,8 +145,27 @@ std::string DescribeInputHandling(const InputReport& input,
   return out.str();
 }
 
+std::string LateStartWarning(const EstimatorSummary& s, int64_t start_ns) {
+  const int64_t initialised = s.frames - s.frames_before_init;
+  if (s.starts.empty() || 2 * initialised >= s.frames) return "";
+  std::string line = Format(
+      "warning: only %lld of %lld frames initialised (%.1f %%): the first "
+      "start came at t = %.3f s",
+      static_cast<long long>(initialised), static_cast<long long>(s.frames),
+      Percent(initialised, s.frames),
+      1e-9 * static_cast<double>(s.starts.front().t_ns - start_ns));
+  if (!s.init_attempts.empty()) {
+    line += "; refused before it: " + DescribeInitFailures(s.init_attempts);
+  }
+  return line;
+}
+
 int ReplayExitStatus(const EstimatorSummary& summary, int64_t frames_with_pose,
                      std::string* why) {
+  if (summary.starts.empty()) {
+    *why = "the estimator never initialised: " + DescribeNoStart(summary);
+    return 3;
+  }
   if (2 * frames_with_pose > summary.frames) return 0;
   *why = Format(
       "most frames got no pose: %lld of %lld (%.1f %%); %lld before "

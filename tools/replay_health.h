@@ -39,10 +39,20 @@ std::string DescribeInputHandling(const InputReport& input,
                                   const EstimatorSummary& summary,
                                   int64_t frames_with_pose);
 
+// When the start came so late that fewer than half of the frames were
+// initialised: one line starting "warning: " with the share, the time of
+// the first start after start_ns [s] and the attempts refused before it;
+// otherwise "". (Such a run also ends with status 4: its frames before the
+// start have no pose.)
+std::string LateStartWarning(const EstimatorSummary& summary, int64_t start_ns);
+
 // The exit status of a replay that ran to the end, and when it is not 0 the
 // reason, one line:
 //   0  most frames got a pose;
-//   4  most frames got no pose (the run did not track).
+//   3  the estimator never initialised (the reason: each start attempt's
+//      refusals counted by method and reason, DescribeNoStart);
+//   4  it initialised, but most frames got no pose (the run did not track,
+//      or started late).
 int ReplayExitStatus(const EstimatorSummary& summary, int64_t frames_with_pose,
                      std::string* why);
 

@@ -60,7 +60,9 @@ constexpr char kUsage[] =
     "\n"
     "Bad input is survived and reported (docs/robustness.md): a warning\n"
     "line per fault, counts in the summary. Exit status: 0 when most frames\n"
-    "got a pose; 4 when most did not (the reason is printed); 1 on an error.\n"
+    "got a pose; 3 when the estimator never initialised; 4 when it did but\n"
+    "most frames got no pose (the reason is printed); 1 on an error. Fewer\n"
+    "than half of the frames initialised (a late start) prints a warning.\n"
     "\n"
     "Images: the frontend: block of the config (built-in defaults without\n"
     "--config) sets the tracker; mono or stereo follows estimator.use_stereo.\n"
@@ -284,6 +286,7 @@ int main(int argc, char** argv) {
       std::printf("%s\n", line.c_str());
     }
     PrintSummary(estimator.summary(), frames, wall_s);
+    PrintStarts(estimator.summary());
     const int64_t with_pose = static_cast<int64_t>(estimate.size());
     std::printf(
         "%s",
@@ -309,7 +312,11 @@ int main(int argc, char** argv) {
           "estimator)\n",
           total_s > 0 ? n / total_s : 0.0);
     }
-    if (!seq.data.ground_truth.empty()) {
+    const std::string late =
+        LateStartWarning(estimator.summary(), seq.data.start_ns);
+    if (!late.empty()) std::printf("%s\n", late.c_str());
+    // Without two poses there is nothing to align (the status says why).
+    if (!seq.data.ground_truth.empty() && estimate.size() >= 2) {
       Evaluate(args.out, estimate, seq.data.ground_truth, frames.size());
     }
     std::string why;

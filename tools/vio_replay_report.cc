@@ -145,6 +145,28 @@ void PrintSummary(const EstimatorSummary& s,
               wall_s, span_s, wall_s > 0 ? span_s / wall_s : 0.0);
 }
 
+void PrintStarts(const EstimatorSummary& s) {
+  for (const StartRecord& r : s.starts) {
+    std::printf("  start       %s%s at %lld ns", InitMethodName(r.method),
+                r.restart ? " (re-initialisation after a reset)" : "",
+                static_cast<long long>(r.t_ns));
+    if (r.method != InitMethod::kStatic) {
+      const InitDiagnostics& d = r.diagnostics;
+      std::printf(
+          ": %zu frames, IMU excitation %.2f m/s^2, joint adjustment "
+          "moved the scale %+.1f %%",
+          r.window.size(), d.imu_excitation, 100.0 * d.refine_scale_change);
+    }
+    std::printf("\n");
+  }
+  if (!s.init_attempts.empty()) {
+    std::printf("  start attempts refused  %zu: %s\n", s.init_attempts.size(),
+                DescribeInitFailures(s.init_attempts).c_str());
+  }
+  std::printf("  zero velocity         %lld frames held still\n",
+              static_cast<long long>(s.zero_velocity_frames));
+}
+
 void Evaluate(const std::string& dir, const Trajectory& estimate,
               const std::vector<StampedState>& ground_truth, size_t frames) {
   Trajectory truth;

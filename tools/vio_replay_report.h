@@ -41,6 +41,10 @@ Trajectory WriteOutputs(const std::string& dir,
 void PrintSummary(const EstimatorSummary& summary,
                   const std::vector<FeatureFrame>& frames, double wall_s);
 
+// The starts (first and re-initialisations) with their figures, and the
+// failed start attempts counted by method and reason.
+void PrintStarts(const EstimatorSummary& summary);
+
 // Associates, aligns (posyaw), prints ATE and RPE (1 m of travel) and writes
 // DIR/evaluation.png. The ATE line says how many of the sequence's `frames`
 // it covers (poses associated with the ground truth).

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "factors/tangent_jacobians.h"
+
 namespace vio {
 namespace {
 
@@ -70,6 +72,47 @@ bool AnalyticTangentJacobians(const FactorInstance& f,
   return true;
 }
 
+// A factor that also gives its Jacobians in the tangent space
+// (factors/tangent_jacobians.h): those, as written by EvaluateTangent.
+// Returns false when it is not such a factor or its evaluation fails.
+bool DirectTangentJacobians(const FactorInstance& f,
+                            std::vector<Eigen::MatrixXd>* tangent) {
+  const auto* direct = dynamic_cast<const TangentJacobians*>(f.cost.get());
+  if (direct == nullptr) return false;
+  const int m = f.cost->num_residuals();
+  std::vector<RowMajorMatrix> jacobians(f.blocks.size());
+  std::vector<double*> jac_ptrs;
+  std::vector<const double*> params;
+  for (size_t b = 0; b < f.blocks.size(); ++b) {
+    jacobians[b].resize(m, TangentSize(f, b));
+    jac_ptrs.push_back(jacobians[b].data());
+    params.push_back(f.blocks[b].data());
+  }
+  Eigen::VectorXd r(m);
+  if (!direct->EvaluateTangent(params.data(), r.data(), jac_ptrs.data())) {
+    return false;
+  }
+  tangent->assign(jacobians.begin(), jacobians.end());
+  return true;
+}
+
+BlockJacobianError Error(const std::string& name, const Eigen::MatrixXd& a,
+                         const Eigen::MatrixXd& numeric,
+                         const JacobianCheckOptions& options) {
+  BlockJacobianError e;
+  e.block = name;
+  if (!a.allFinite()) {
+    // A non-finite analytic Jacobian fails whatever the numeric one says.
+    e.max_abs_error = e.max_rel_error = std::numeric_limits<double>::infinity();
+  } else {
+    e.max_abs_error = (a - numeric).cwiseAbs().maxCoeff();
+    const double scale =
+        std::max(numeric.cwiseAbs().maxCoeff(), options.min_scale);
+    e.max_rel_error = e.max_abs_error / scale;
+  }
+  return e;
+}
+
 }  // namespace
 
 bool CompareJacobians(const FactorInstance& f,
@@ -78,6 +121,13 @@ bool CompareJacobians(const FactorInstance& f,
   errors->clear();
   std::vector<Eigen::MatrixXd> analytic;
   if (!AnalyticTangentJacobians(f, &analytic)) return false;
+  // Factors with EvaluateTangent get a second row per block: their direct
+  // tangent Jacobians against the same numeric ones.
+  std::vector<Eigen::MatrixXd> direct;
+  const bool has_direct = DirectTangentJacobians(f, &direct);
+  if (dynamic_cast<const TangentJacobians*>(f.cost.get()) && !has_direct) {
+    return false;
+  }
 
   std::vector<BlockJacobianError> out;
   const int m = f.cost->num_residuals();
@@ -94,20 +144,13 @@ bool CompareJacobians(const FactorInstance& f,
       }
       numeric.col(k) = (r_plus - r_minus) / (2.0 * options.step);
     }
-    BlockJacobianError e;
-    e.block = b < f.block_names.size() ? f.block_names[b]
-                                       : "block " + std::to_string(b);
-    if (!analytic[b].allFinite()) {
-      // A non-finite analytic Jacobian fails whatever the numeric one says.
-      e.max_abs_error = e.max_rel_error =
-          std::numeric_limits<double>::infinity();
-    } else {
-      e.max_abs_error = (analytic[b] - numeric).cwiseAbs().maxCoeff();
-      const double scale =
-          std::max(numeric.cwiseAbs().maxCoeff(), options.min_scale);
-      e.max_rel_error = e.max_abs_error / scale;
+    const std::string name = b < f.block_names.size()
+                                 ? f.block_names[b]
+                                 : "block " + std::to_string(b);
+    out.push_back(Error(name, analytic[b], numeric, options));
+    if (has_direct) {
+      out.push_back(Error(name + " (tangent)", direct[b], numeric, options));
     }
-    out.push_back(e);
   }
   *errors = std::move(out);
   return true;

@@ -13,7 +13,9 @@
 //   max_abs_error = max |J_a - J_n|,
 //   max_rel_error = max |J_a - J_n| / max(max |J_n|, kMinScale),
 // i.e. relative to the block's largest entry, which keeps near-zero entries
-// from inflating it.
+// from inflating it. A factor that also gives its Jacobians directly in the
+// tangent space (factors/tangent_jacobians.h) gets a second entry per block,
+// "<block> (tangent)": its EvaluateTangent Jacobian against the same J_n.
 //
 // The random but realistic states of each factor are made by its "case"
 // (factors/check/factor_cases.h); the jacobian_check tool and the factors'
@@ -51,8 +53,9 @@ struct JacobianCheckOptions {
 };
 
 // Evaluates the instance analytically and numerically and returns one error
-// entry per parameter block. Returns false (and leaves *errors empty) when the
-// cost function's Evaluate fails at the point or at a perturbed point.
+// entry per parameter block (two for a TangentJacobians factor, see above).
+// Returns false (and leaves *errors empty) when the cost function's Evaluate
+// (or EvaluateTangent) fails at the point or at a perturbed point.
 bool CompareJacobians(const FactorInstance& instance,
                       const JacobianCheckOptions& options,
                       std::vector<BlockJacobianError>* errors);

@@ -1,0 +1,249 @@
+// The estimator's start path after an initialiser has succeeded
+// (estimator/initialization.h): the first window from its states, the joint
+// visual-inertial bundle adjustment that refines them, and the
+// re-initialisation after a failure reset while moving.
+//
+// Why a joint adjustment right after the alignment (rather than VINS-Mono's
+// alignment alone or ORB-SLAM3's inertial-only MAP step): the linear
+// alignment treats the up-to-scale positions of the structure from motion as
+// exact, and their noise sits in the scale's own column (errors in
+// variables), which biases the scale low; the accelerometer bias it ignores
+// moves the scale too (visual_inertial_alignment_test.cc shows both). An
+// inertial-only MAP step keeps the first flaw. The joint adjustment over the
+// window's IMU and visual factors (the estimator's own factors, with the
+// scale implicit in every position and depth) is the maximum-likelihood
+// estimate the alignment approximates; docs/initialisation.md has the
+// figures before and after it.
+
+#include <cmath>
+#include <utility>
+
+#include "estimator/estimator.h"
+#include "estimator/image_velocity.h"
+#include "estimator/state_prior.h"
+#include "estimator/static_initializer.h"
+#include "preintegration/imu_preintegration.h"
+
+namespace vio {
+namespace {
+
+double PathLength(const Window& window) {
+  double length = 0.0;
+  for (size_t k = 1; k < window.frames.size(); ++k) {
+    length +=
+        (window.frames[k]->p_w_b_value() - window.frames[k - 1]->p_w_b_value())
+            .norm();
+  }
+  return length;
+}
+
+InitialFrame StateOf(const WindowFrame& f) {
+  InitialFrame s;
+  s.t_ns = f.t_ns;
+  s.t_imu_ns = f.t_imu_ns;
+  s.p_w_b = f.p_w_b_value();
+  s.q_w_b = Eigen::Quaterniond(f.pose.data() + kPoseQ).normalized();
+  s.v_w = f.v_w_value();
+  s.b_a = Eigen::Vector3d(f.speed_bias.data() + kSbBa);
+  s.b_g = f.b_g_value();
+  return s;
+}
+
+}  // namespace
+
+std::string DescribeNoStart(const EstimatorSummary& s) {
+  if (!s.init_attempts.empty()) return DescribeInitFailures(s.init_attempts);
+  if (s.frames == 0) return "no frame was given";
+  if (s.frames_without_imu + s.frames_out_of_order >= s.frames) {
+    return "no frame was covered by the IMU (" +
+           std::to_string(s.frames_without_imu) + " frames without IMU)";
+  }
+  return "no attempt was made";
+}
+
+bool Estimator::StartFromInitialWindow(const InitialWindow& start,
+                                       bool restart) {
+  if (start.frames.empty()) return false;
+  StartRecord record;
+  record.t_ns = start.frames.back().t_ns;
+  record.method = start.method;
+  record.restart = restart;
+  record.diagnostics = start.diagnostics;
+  if (start.frames.size() == 1) {
+    // The static start: one frame, at rest.
+    const InitialFrame& s = start.frames.front();
+    EstimatorOutput state;
+    state.p_w_b = s.p_w_b;
+    state.q_w_b = s.q_w_b;
+    state.v_w = s.v_w;
+    state.b_a = s.b_a;
+    state.b_g = s.b_g;
+    StartWindow(FeatureFrame{s.t_ns, s.observations}, s.t_imu_ns, state,
+                options_.state_prior.velocity_still);
+    // Still by the static start's own test (the detector agrees unless its
+    // windows differ): the next frame's interval may be tied to this one.
+    newest_still_ = StillNow(0.0);
+    record.window.push_back(StateOf(*window_.frames.back()));
+    summary_.starts.push_back(std::move(record));
+    return true;
+  }
+  // The running window (a re-initialisation) is kept to fall back on.
+  auto saved_frames = std::move(window_.frames);
+  window_.frames.clear();
+  FeatureManager saved_features = std::move(features_);
+  auto saved_prior = std::move(prior_);
+  const auto saved_prior_blocks = prior_blocks_;
+  auto saved_extrinsic_prior = std::move(extrinsic_prior_);
+  const auto saved_extrinsic_blocks = extrinsic_prior_blocks_;
+  const int64_t saved_keyframe = last_keyframe_id_;
+  const size_t n = start.frames.size();
+  double value = 0.0, limit = 0.0;
+  InitFailure reason = InitFailure::kImuUnavailable;
+  if (BuildWindow(start)) {
+    const double path_before = PathLength(window_);
+    reason = RefineStart(&value, &limit);
+    record.diagnostics.refine_scale_change =
+        path_before > 0.0 ? PathLength(window_) / path_before - 1.0 : 0.0;
+  }
+  if (reason != InitFailure::kNone) {
+    window_.frames = std::move(saved_frames);
+    features_ = std::move(saved_features);
+    prior_ = std::move(saved_prior);
+    prior_blocks_ = saved_prior_blocks;
+    extrinsic_prior_ = std::move(saved_extrinsic_prior);
+    extrinsic_prior_blocks_ = saved_extrinsic_blocks;
+    last_keyframe_id_ = saved_keyframe;
+    InitAttempt a;
+    a.t_ns = record.t_ns;
+    a.method = start.method;
+    a.reason = reason;
+    a.value = value;
+    a.limit = limit;
+    summary_.init_attempts.push_back(a);
+    return false;
+  }
+  // Every frame of the first window is a keyframe; Slide counted the newest.
+  summary_.keyframes += static_cast<int64_t>(n) - 1;
+  newest_still_ = StillNow(window_.frames.back()->v_w_value().norm());
+  for (const auto& f : window_.frames) record.window.push_back(StateOf(*f));
+  summary_.starts.push_back(std::move(record));
+  if (restart) ++summary_.reinitializations;
+  return true;
+}
+
+bool Estimator::BuildWindow(const InitialWindow& start) {
+  features_ = FeatureManager(window_.num_cameras);
+  for (const InitialFrame& s : start.frames) {
+    auto f = std::make_unique<WindowFrame>();
+    if (!window_.frames.empty()) {
+      const WindowFrame& prev = *window_.frames.back();
+      try {
+        f->imu = std::make_unique<ImuPreintegration>(
+            prev.t_imu_ns, s.t_imu_ns, imu_,
+            Eigen::Vector3d(prev.speed_bias.data() + kSbBa), prev.b_g_value(),
+            noise_, preintegration_);
+      } catch (const std::invalid_argument&) {
+        return false;
+      }
+    }
+    f->id = next_frame_id_++;
+    f->t_ns = s.t_ns;
+    f->t_imu_ns = s.t_imu_ns;
+    f->t_d_at_stamp = window_.t_d;
+    f->gyr_b = GyroscopeAt(imu_, s.t_imu_ns);
+    f->keyframe = true;
+    f->p_w_b() = s.p_w_b;
+    f->q_w_b() = s.q_w_b.normalized();
+    f->v_w() = s.v_w;
+    f->b_a() = s.b_a;
+    f->b_g() = s.b_g;
+    summary_.observations_skipped +=
+        features_.AddFrame(f->id, s.observations).skipped;
+    window_.frames.push_back(std::move(f));
+  }
+  // The initialiser's points become inverse depths in their anchors; the
+  // other landmarks are triangulated as usual.
+  for (auto& [id, l] : features_.landmarks()) {
+    const auto it = start.points_w.find(id);
+    if (it == start.points_w.end() || !l.HasAnchor()) continue;
+    const Sighting& a = l.anchor();
+    const double z =
+        (window_.T_w_c(a.frame_id, a.camera).inverse() * it->second).z();
+    if (z >= options_.triangulation.min_depth_m &&
+        z <= options_.triangulation.max_depth_m) {
+      l.triangulated = true;
+      l.inverse_depth = 1.0 / z;
+      ++summary_.landmarks_triangulated;
+    }
+  }
+  summary_.landmarks_triangulated +=
+      features_.TriangulateNew(PoseFn(), options_.triangulation);
+  // The gauge (position, yaw) held on the oldest frame; roll, pitch and
+  // velocity left loose so that the adjustment corrects the alignment's
+  // gravity and scale; the biases keep state_prior's sigmas.
+  StatePriorOptions sigmas = options_.state_prior;
+  sigmas.tilt_rad = options_.init.refine_tilt_rad;
+  WindowFrame& oldest = *window_.frames.front();
+  prior_ = MakeStatePrior(oldest.pose.data(), oldest.speed_bias.data(), sigmas,
+                          options_.init.max_speed_m_s);
+  prior_blocks_ = {oldest.pose.data(), oldest.speed_bias.data()};
+  SetExtrinsicPrior();
+  last_keyframe_id_ = window_.frames.back()->id;
+  return true;
+}
+
+InitFailure Estimator::RefineStart(double* value, double* limit) {
+  WindowProblem problem(&window_, &features_, ProblemSettings());
+  problem.AddPrior(prior_.get(), prior_blocks_);
+  if (extrinsic_prior_) {
+    problem.AddPrior(extrinsic_prior_.get(), extrinsic_prior_blocks_);
+  }
+  if (!problem.AddImuFactors()) return InitFailure::kRefinementFailed;
+  const int landmarks = problem.AddVisualFactors();
+  const double path_before = PathLength(window_);
+  if (options_.init.refine_iterations > 0) {
+    SolverOptions solver = options_.solver;
+    solver.max_iterations = options_.init.refine_iterations;
+    problem.Solve(solver);
+  }
+  // The failure rules of a step, against the alignment's newest state.
+  const WindowFrame& newest = *window_.frames.back();
+  StepCheck check;
+  check.landmarks_in_problem = landmarks;
+  check.p_before = check.p_after = newest.p_w_b_value();
+  check.q_before = check.q_after =
+      Eigen::Quaterniond(newest.pose.data() + kPoseQ).normalized();
+  check.v_after = newest.v_w_value();
+  check.b_a = Eigen::Vector3d(newest.speed_bias.data() + kSbBa);
+  check.b_g = newest.b_g_value();
+  const Failure failure = DetectFailure(check, options_.failure);
+  if (failure != Failure::kNone) {
+    *value = static_cast<double>(failure);
+    *limit = 0.0;
+    return InitFailure::kRefinementFailed;
+  }
+  const double change =
+      path_before > 0.0 ? PathLength(window_) / path_before - 1.0 : 0.0;
+  if (!(std::abs(change) <= options_.init.max_refine_scale_change)) {
+    *value = change;
+    *limit = options_.init.max_refine_scale_change;
+    return InitFailure::kRefinementScaleChange;
+  }
+  Slide(problem);
+  return InitFailure::kNone;
+}
+
+void Estimator::TryReinitialize(const FeatureFrame& frame, int64_t t_imu_ns,
+                                EstimatorOutput* out) {
+  init_.AddFrame(frame, t_imu_ns);
+  InitialWindow start;
+  if (!init_.TryInMotion(imu_, &summary_.init_attempts, &start)) return;
+  // The running estimate fixes the gauge: the trajectory continues.
+  SetGauge(out->p_w_b, Yaw(out->q_w_b.toRotationMatrix()), &start);
+  if (!StartFromInitialWindow(start, /*restart=*/true)) return;
+  reinit_pending_ = false;
+  init_.Clear();
+  *out = OutputOf(*window_.frames.back(), frame.t_ns);
+}
+
+}  // namespace vio

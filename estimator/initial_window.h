@@ -1,0 +1,77 @@
+#ifndef VIO_ESTIMATOR_INITIAL_WINDOW_H_
+#define VIO_ESTIMATOR_INITIAL_WINDOW_H_
+
+// What an initialiser hands the estimator: the states of the frames it used
+// (they become the first window) in a gravity-aligned world, and the
+// landmarks it triangulated, all metric. Also the frames the in-motion
+// initialisers take as input.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "estimator/initialization_options.h"
+#include "geometry/feature_observation.h"
+
+namespace vio {
+
+// A frame as the initialisers keep it until a start succeeds.
+struct BufferedFrame {
+  int64_t t_ns = 0;                              // camera stamp [ns]
+  int64_t t_imu_ns = 0;                          // t_ns + t_d [ns]
+  std::vector<FeatureObservation> observations;  // xy, velocity set
+};
+
+struct InitialFrame {
+  int64_t t_ns = 0;                                 // camera stamp [ns]
+  int64_t t_imu_ns = 0;                             // [ns]
+  Eigen::Vector3d p_w_b = Eigen::Vector3d::Zero();  // [m]
+  Eigen::Quaterniond q_w_b = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d v_w = Eigen::Vector3d::Zero();  // [m/s]
+  Eigen::Vector3d b_a = Eigen::Vector3d::Zero();  // [m/s^2]
+  Eigen::Vector3d b_g = Eigen::Vector3d::Zero();  // [rad/s]
+  std::vector<FeatureObservation> observations;
+};
+
+// Figures of the start, for the summary and the benchmarks.
+struct InitDiagnostics {
+  double parallax_px = 0.0;          // mono: reference pair, compensated
+  int inliers = 0;                   // mono: essential matrix; stereo: points
+  double reprojection_rms_px = 0.0;  // mono: after its bundle adjustment
+  double scale = 0.0;                // mono: metres per visual unit
+  double scale_uncertainty = 0.0;    // mono: relative std of the scale
+  double gravity_error = 0.0;        // | |g_free| - g | [m/s^2]
+  double imu_excitation = 0.0;       // std of dv / T [m/s^2]
+  double refine_scale_change = 0.0;  // of the joint adjustment [-]
+};
+
+struct InitialWindow {
+  InitMethod method = InitMethod::kStatic;
+  std::vector<InitialFrame> frames;  // oldest first; the newest started
+  // Triangulated landmarks in the world, by feature id [m].
+  std::map<int64_t, Eigen::Vector3d> points_w;
+  InitDiagnostics diagnostics;
+};
+
+// An accepted start, for the summary: the first window's states right after
+// the joint adjustment (observations left out).
+struct StartRecord {
+  int64_t t_ns = 0;  // the frame it happened at [ns]
+  InitMethod method = InitMethod::kStatic;
+  bool restart = false;  // a re-initialisation after a failure reset
+  InitDiagnostics diagnostics;
+  std::vector<InitialFrame> window;
+};
+
+// Moves the window rigidly about the world z axis and along it so that its
+// newest frame gets position p_w_b and the yaw `yaw_rad` (the 4-DoF gauge of
+// visual-inertial odometry: a start fixes it, a re-start keeps the running
+// one). Velocities and points follow; roll, pitch, biases are unchanged.
+void SetGauge(const Eigen::Vector3d& p_w_b, double yaw_rad,
+              InitialWindow* window);
+
+}  // namespace vio
+
+#endif  // VIO_ESTIMATOR_INITIAL_WINDOW_H_

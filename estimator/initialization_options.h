@@ -1,0 +1,128 @@
+#ifndef VIO_ESTIMATOR_INITIALIZATION_OPTIONS_H_
+#define VIO_ESTIMATOR_INITIALIZATION_OPTIONS_H_
+
+// Options of the estimator's start (estimator/initialization.h) and of its
+// zero-velocity handling (estimator/zero_velocity.h): plain structs with
+// in-class defaults, a unit on every field and a Validate() whose message
+// starts with the field's key relative to the `estimator:` block
+// ("init.mono.min_inliers must be >= 8 (got 3)"). docs/initialisation.md
+// explains every value.
+
+#include <string>
+
+namespace vio {
+
+// Which initialiser may start the estimator.
+enum class InitMethod {
+  kAuto,    // whichever is ready first and passes its checks
+  kStatic,  // only from a still start (IMU and image motion both still)
+  kMono,    // only in motion: monocular structure from motion + alignment
+  kStereo,  // only in motion: stereo depths + PnP (needs use_stereo)
+};
+
+// "auto", "static", "mono", "stereo".
+const char* InitMethodName(InitMethod method);
+// False when `name` is none of InitMethodName's values.
+bool ParseInitMethod(const std::string& name, InitMethod* method);
+
+// Monocular start in motion: up-to-scale structure from motion over the
+// recent frames, then visual-inertial alignment.
+struct MonoInitOptions {
+  double window_s = 2.0;  // frames of the last window_s are used [s]
+  // Of them at most this many, evenly spread, the newest always kept; they
+  // become the first window, so at most window_size + 1 [-].
+  int max_frames = 11;
+  // The frames used span at least [s]: the scale shows in how the
+  // acceleration varies, which needs time (docs/initialisation.md).
+  double min_span_s = 1.5;
+  // Median parallax of the reference pair left over by the rotation that
+  // best explains it (pure rotation leaves none, whatever the gyroscope
+  // bias) [px].
+  double min_parallax_px = 20.0;
+  int min_correspondences = 30;  // features the reference pair shares [-]
+  int min_inliers = 25;  // essential-matrix inliers in front of both [-]
+  double ransac_threshold_px = 2.0;  // epipolar distance, essential matrix [px]
+  int min_pnp_inliers = 15;          // per frame placed by PnP [-]
+  double pnp_threshold_px = 3.0;     // PnP RANSAC reprojection threshold [px]
+  // Reprojection RMS after the structure-from-motion bundle adjustment [px].
+  double max_reprojection_rms_px = 2.5;
+  int bundle_iterations = 15;  // of that adjustment [-]
+  // IMU excitation: standard deviation over the intervals of the mean
+  // specific force dv / T (VINS-Mono's test, which it only warns about).
+  // Constant velocity or a constant-speed turn give almost none [m/s^2].
+  double min_imu_excitation = 0.25;
+  // Relative standard deviation of the least-squares scale [-].
+  double max_scale_uncertainty = 0.25;
+};
+
+// Stereo start in motion: depths from the first stereo pair, later frames by
+// PnP, then gyroscope bias, velocities and gravity from the IMU.
+struct StereoInitOptions {
+  double window_s = 0.4;       // frames of the last window_s are used [s]
+  double min_span_s = 0.35;    // the frames used span at least [s]
+  int min_stereo_points = 20;  // triangulated from the oldest frame's pair [-]
+  int min_pnp_inliers = 15;    // per frame placed by PnP [-]
+  double pnp_threshold_px = 3.0;  // PnP RANSAC reprojection threshold [px]
+};
+
+struct InitOptions {
+  InitMethod method = InitMethod::kAuto;
+  MonoInitOptions mono;
+  StereoInitOptions stereo;
+  // Checks shared by the in-motion starts.
+  // RMS over the intervals of the angle between the visual and the
+  // preintegrated rotation once the gyroscope bias is fitted [deg].
+  double max_rotation_misfit_deg = 0.5;
+  // | |g_estimated| - gravity_magnitude | of the unconstrained alignment
+  // [m/s^2].
+  double max_gravity_error = 0.5;
+  double max_speed_m_s = 15.0;  // an estimated velocity beyond: implausible
+  // The joint visual-inertial bundle adjustment of the first window right
+  // after alignment: iterations (it has to walk the scale out of the
+  // alignment's bias: ~50 from 40 % off), and the largest change of the
+  // trajectory's scale it may make before the start is refused [-].
+  int refine_iterations = 50;
+  double max_refine_scale_change = 1.0;
+  // Its prior on the oldest frame's roll and pitch: loose, so that the
+  // adjustment corrects the alignment's gravity [rad]. (Position and yaw get
+  // state_prior's, velocity none: max_speed_m_s as its std.)
+  double refine_tilt_rad = 0.5;
+  // After a failure reset while moving, run the in-motion initialiser again
+  // and let its states replace the restarted window (position and yaw kept).
+  bool reinitialize_after_reset = true;
+
+  // Checks every field; `stereo_available` is EstimatorOptions::use_stereo
+  // and window_size bounds mono.max_frames.
+  bool Validate(bool stereo_available, int window_size,
+                std::string* message) const;
+};
+
+// Zero-velocity detection and the constraint it adds (factors/
+// zero_motion_factor.h). Still means: the IMU's block means barely vary over
+// imu_window_s AND the tracked features moved less than max_disparity_px
+// (median) over image_span_s. The image test is what keeps it from firing
+// in slow motion, which the IMU alone cannot tell from rest.
+struct ZeroVelocityOptions {
+  bool enabled = true;
+  double imu_window_s = 0.5;  // IMU span judged [s]
+  double block_s = 0.1;       // block means over block_s [s]
+  double max_acc_std = 0.15;  // std of block means, at most [m/s^2]
+  double max_gyr_std = 0.02;  // [rad/s]
+  double image_span_s =
+      1.0;  // features compared with the frame this far back [s]
+  double max_disparity_px = 3.0;  // median displacement over the span [px]
+  int min_common_features = 15;   // fewer shared: no image verdict [-]
+  // Without an image verdict (no features) still also needs the estimated
+  // speed below this [m/s].
+  double max_speed_without_image_m_s = 0.05;
+  // Standard deviations of the constraint between two still frames.
+  double sigma_position_m = 0.002;    // [m]
+  double sigma_rotation_rad = 0.002;  // [rad]
+  double sigma_velocity_m_s = 0.005;  // [m/s]
+
+  bool Validate(std::string* message) const;
+};
+
+}  // namespace vio
+
+#endif  // VIO_ESTIMATOR_INITIALIZATION_OPTIONS_H_

@@ -1,0 +1,99 @@
+#include "estimator/mono_initializer.h"
+
+#include "estimator/in_motion_start.h"
+#include "estimator/structure_from_motion.h"
+
+namespace vio {
+namespace {
+
+SfmOptions SfmOptionsFrom(const EstimatorOptions& o, double focal_px) {
+  const MonoInitOptions& m = o.init.mono;
+  SfmOptions s;
+  s.focal_px = focal_px;
+  s.min_parallax_px = m.min_parallax_px;
+  s.min_correspondences = m.min_correspondences;
+  s.min_inliers = m.min_inliers;
+  s.ransac_threshold_px = m.ransac_threshold_px;
+  s.min_pnp_inliers = m.min_pnp_inliers;
+  s.pnp_threshold_px = m.pnp_threshold_px;
+  s.max_reprojection_rms_px = m.max_reprojection_rms_px;
+  s.bundle_iterations = m.bundle_iterations;
+  s.min_ray_angle_deg = o.triangulation.min_parallax_deg;
+  return s;
+}
+
+// Camera-0 features of a frame, by feature id.
+SfmFrame SfmFrameOf(const BufferedFrame& frame) {
+  SfmFrame f;
+  for (const FeatureObservation& o : frame.observations) {
+    if (o.camera == 0 && o.xy.allFinite()) f.xy[o.feature_id] = o.xy;
+  }
+  return f;
+}
+
+}  // namespace
+
+MonoInitializer::MonoInitializer(const EstimatorOptions& options,
+                                 const Eigen::Isometry3d& T_b_c,
+                                 double focal_px, const ImuNoise& noise,
+                                 const PreintegrationOptions& preintegration)
+    : options_(options),
+      T_b_c_(T_b_c),
+      focal_px_(focal_px),
+      noise_(noise),
+      preintegration_(preintegration) {}
+
+InitAttempt MonoInitializer::TryInitialize(
+    const std::vector<BufferedFrame>& frames, const std::vector<ImuSample>& imu,
+    InitialWindow* window) const {
+  const MonoInitOptions& m = options_.init.mono;
+  auto failed = [&](InitFailure reason, double value, double limit) {
+    InitAttempt a;
+    a.t_ns = frames.empty() ? 0 : frames.back().t_ns;
+    a.method = InitMethod::kMono;
+    a.reason = reason;
+    a.value = value;
+    a.limit = limit;
+    return a;
+  };
+  const std::vector<int> selected =
+      SelectFrames(frames, m.window_s, m.max_frames);
+  const double span = SpanSeconds(frames, selected);
+  if (selected.size() < 3 || span < m.min_span_s) {
+    return failed(InitFailure::kTooFewFrames, span, m.min_span_s);
+  }
+  std::vector<ImuPreintegration> intervals;
+  if (!PreintegrateSelected(frames, selected, imu, noise_, preintegration_,
+                            &intervals)) {
+    return failed(InitFailure::kImuUnavailable, 0.0, 0.0);
+  }
+  const double excitation = ImuExcitation(intervals);
+  window->diagnostics = InitDiagnostics();
+  window->diagnostics.imu_excitation = excitation;
+  if (!(excitation >= m.min_imu_excitation)) {
+    return failed(InitFailure::kLowImuExcitation, excitation,
+                  m.min_imu_excitation);
+  }
+  std::vector<SfmFrame> sfm_frames;
+  for (int k : selected) sfm_frames.push_back(SfmFrameOf(frames[k]));
+  const SfmResult sfm =
+      SolveStructureFromMotion(sfm_frames, SfmOptionsFrom(options_, focal_px_));
+  window->diagnostics.parallax_px = sfm.parallax_px;
+  window->diagnostics.inliers = sfm.inliers;
+  window->diagnostics.reprojection_rms_px = sfm.reprojection_rms_px;
+  if (sfm.failure != InitFailure::kNone) {
+    return failed(sfm.failure, sfm.value, sfm.limit);
+  }
+  VisualTrajectory visual;
+  visual.T_v_c = sfm.T_v_c;
+  visual.points_v = sfm.points_v;
+  visual.metric = false;
+  InitAttempt a = AlignAndBuild(visual, frames, selected, T_b_c_, options_,
+                                &intervals, window);
+  a.t_ns = frames.back().t_ns;
+  a.method = InitMethod::kMono;
+  window->method = InitMethod::kMono;
+  return a;
+}
+
+}  // namespace vio

@@ -1,0 +1,365 @@
+#include "estimator/structure_from_motion.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <set>
+
+#include "estimator/triangulation.h"
+#include "estimator/window.h"
+#include "factors/pose_manifold.h"
+#include "factors/reprojection_factor.h"
+
+namespace vio {
+namespace {
+
+// How far a candidate reference pair got; a later stage is a better excuse.
+enum Stage { kCorrespondences = 0, kParallax = 1, kInliers = 2, kDone = 3 };
+
+struct Candidate {
+  Stage stage = kCorrespondences;
+  InitFailure failure = InitFailure::kFewCorrespondences;
+  double value = 0.0, limit = 0.0;
+  double parallax_px = 0.0;
+  int inliers = 0;
+  Eigen::Isometry3d T_l_n = Eigen::Isometry3d::Identity();  // camera n in l
+  std::vector<int64_t> inlier_ids;
+};
+
+std::vector<int64_t> CommonIds(const SfmFrame& a, const SfmFrame& b) {
+  std::vector<int64_t> ids;
+  for (const auto& [id, xy] : a.xy) {
+    if (b.xy.count(id) > 0) ids.push_back(id);
+  }
+  return ids;
+}
+
+cv::Mat Identity3() { return cv::Mat::eye(3, 3, CV_64F); }
+
+// The relative pose of the newest frame n against frame l from the essential
+// matrix: x_n ~ R x_l + t, so T_l_n = [R | t]^-1.
+Candidate TryPair(const SfmFrame& l, const SfmFrame& n,
+                  const SfmOptions& options) {
+  Candidate c;
+  const std::vector<int64_t> ids = CommonIds(l, n);
+  c.value = static_cast<double>(ids.size());
+  c.limit = options.min_correspondences;
+  if (static_cast<int>(ids.size()) < options.min_correspondences) return c;
+  std::vector<Eigen::Vector2d> xl, xn;
+  std::vector<cv::Point2d> pl, pn;
+  for (int64_t id : ids) {
+    xl.push_back(l.xy.at(id));
+    xn.push_back(n.xy.at(id));
+    pl.emplace_back(xl.back().x(), xl.back().y());
+    pn.emplace_back(xn.back().x(), xn.back().y());
+  }
+  c.stage = kParallax;
+  c.failure = InitFailure::kLowParallax;
+  c.parallax_px = options.focal_px * RotationCompensatedParallax(xl, xn);
+  c.value = c.parallax_px;
+  c.limit = options.min_parallax_px;
+  if (c.parallax_px < options.min_parallax_px) return c;
+  c.stage = kInliers;
+  c.failure = InitFailure::kFewInliers;
+  c.limit = options.min_inliers;
+  cv::Mat mask;
+  const cv::Mat E = cv::findEssentialMat(
+      pl, pn, Identity3(), cv::RANSAC, 0.999,
+      options.ransac_threshold_px / options.focal_px, mask);
+  if (E.rows != 3 || E.cols != 3) return c;
+  cv::Mat R, t;
+  c.inliers = cv::recoverPose(E, pl, pn, Identity3(), R, t, mask);
+  c.value = c.inliers;
+  if (c.inliers < options.min_inliers) return c;
+  Eigen::Isometry3d T_n_l = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) T_n_l.linear()(r, k) = R.at<double>(r, k);
+    T_n_l.translation()[r] = t.at<double>(r);
+  }
+  c.T_l_n = T_n_l.inverse();
+  for (size_t i = 0; i < ids.size(); ++i) {
+    if (mask.at<uchar>(static_cast<int>(i)) != 0)
+      c.inlier_ids.push_back(ids[i]);
+  }
+  c.stage = kDone;
+  c.failure = InitFailure::kNone;
+  return c;
+}
+
+// Triangulates every feature not yet in *points that at least two posed
+// frames see; `only` (when non-empty) limits it to those ids.
+void TriangulateMore(const std::vector<SfmFrame>& frames,
+                     const std::vector<bool>& posed,
+                     const std::vector<Eigen::Isometry3d>& T_v_c,
+                     const SfmOptions& options, const std::set<int64_t>& only,
+                     std::map<int64_t, Eigen::Vector3d>* points) {
+  TriangulationOptions t;
+  t.min_parallax_deg = options.min_ray_angle_deg;
+  t.min_depth_m = 1e-3;  // arbitrary units: only "in front" matters
+  t.max_depth_m = 1e4;
+  t.min_observations = 2;
+  std::map<int64_t, std::vector<TriangulationView>> views;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (!posed[k]) continue;
+    for (const auto& [id, xy] : frames[k].xy) {
+      if (points->count(id) > 0 || (!only.empty() && only.count(id) == 0)) {
+        continue;
+      }
+      views[id].push_back({T_v_c[k], xy});
+    }
+  }
+  for (const auto& [id, v] : views) {
+    Eigen::Vector3d p;
+    double depth = 0.0;
+    if (v.size() >= 2 &&
+        Triangulate(v, t, &p, &depth) == TriangulationStatus::kOk) {
+      (*points)[id] = p;
+    }
+  }
+}
+
+}  // namespace
+
+bool PlaceCameraByPnp(const SfmFrame& frame,
+                      const std::map<int64_t, Eigen::Vector3d>& points,
+                      const Eigen::Isometry3d& guess, const SfmOptions& options,
+                      Eigen::Isometry3d* T_v_c, int* inliers_out) {
+  std::vector<cv::Point3d> object;
+  std::vector<cv::Point2d> image;
+  for (const auto& [id, xy] : frame.xy) {
+    const auto it = points.find(id);
+    if (it == points.end()) continue;
+    object.emplace_back(it->second.x(), it->second.y(), it->second.z());
+    image.emplace_back(xy.x(), xy.y());
+  }
+  *inliers_out = 0;
+  if (static_cast<int>(object.size()) < options.min_pnp_inliers) return false;
+  // The guess as OpenCV's object-to-camera transform T_c_v.
+  const Eigen::Isometry3d T_c_v = guess.inverse();
+  const Eigen::AngleAxisd aa(T_c_v.linear());
+  const Eigen::Vector3d r = aa.angle() * aa.axis();
+  cv::Mat rvec = (cv::Mat_<double>(3, 1) << r.x(), r.y(), r.z());
+  cv::Mat tvec = (cv::Mat_<double>(3, 1) << T_c_v.translation().x(),
+                  T_c_v.translation().y(), T_c_v.translation().z());
+  std::vector<int> inliers;
+  const bool ok = cv::solvePnPRansac(
+      object, image, Identity3(), cv::noArray(), rvec, tvec,
+      /*useExtrinsicGuess=*/true, /*iterationsCount=*/100,
+      static_cast<float>(options.pnp_threshold_px / options.focal_px), 0.99,
+      inliers, cv::SOLVEPNP_ITERATIVE);
+  *inliers_out = static_cast<int>(inliers.size());
+  if (!ok || *inliers_out < options.min_pnp_inliers) return false;
+  const Eigen::Vector3d rv(rvec.at<double>(0), rvec.at<double>(1),
+                           rvec.at<double>(2));
+  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
+  if (rv.norm() > 0.0) {
+    result.linear() = Eigen::AngleAxisd(rv.norm(), rv.normalized()).matrix();
+  }
+  result.translation() = Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1),
+                                         tvec.at<double>(2));
+  *T_v_c = result.inverse();
+  return T_v_c->matrix().allFinite();
+}
+
+namespace {
+
+// Bundle adjustment over every pose and point (frame `fixed` held); returns
+// the RMS reprojection error [px] after it, over all observations.
+double BundleAdjust(const std::vector<SfmFrame>& frames, int fixed,
+                    const SfmOptions& options,
+                    std::vector<Eigen::Isometry3d>* T_v_c,
+                    std::map<int64_t, Eigen::Vector3d>* points) {
+  const int n = static_cast<int>(frames.size());
+  std::vector<std::array<double, 7>> poses(n);
+  for (int k = 0; k < n; ++k) poses[k] = PoseArray((*T_v_c)[k]);
+  std::array<double, 7> identity = {0, 0, 0, 0, 0, 0, 1};
+  // Each point as an inverse depth in the first frame that sees it.
+  struct Point {
+    int anchor = -1;
+    double rho = 0.0;
+  };
+  std::map<int64_t, Point> rho;
+  for (const auto& [id, p] : *points) {
+    for (int k = 0; k < n; ++k) {
+      if (frames[k].xy.count(id) == 0) continue;
+      const double z = ((*T_v_c)[k].inverse() * p).z();
+      if (z > 0.0) rho[id] = {k, 1.0 / z};
+      break;
+    }
+  }
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  ceres::HuberLoss loss(2.0 * options.ransac_threshold_px);
+  PoseManifold manifold;
+  for (int k = 0; k < n; ++k) {
+    problem.AddParameterBlock(poses[k].data(), 7, &manifold);
+  }
+  problem.SetParameterBlockConstant(poses[fixed].data());
+  problem.AddParameterBlock(identity.data(), 7, &manifold);
+  problem.SetParameterBlockConstant(identity.data());
+  // Residuals in pixels; Huber beyond twice the RANSAC threshold.
+  struct Term {
+    std::unique_ptr<ceres::CostFunction> cost;
+    std::vector<double*> blocks;
+  };
+  std::vector<Term> terms;
+  for (auto& [id, point] : rho) {
+    const Eigen::Vector2d& xa = frames[point.anchor].xy.at(id);
+    for (int k = point.anchor + 1; k < n; ++k) {
+      const auto it = frames[k].xy.find(id);
+      if (it == frames[k].xy.end()) continue;
+      Term t;
+      t.cost = std::make_unique<ReprojectionFactor>(xa, it->second,
+                                                    options.focal_px);
+      t.blocks = {poses[point.anchor].data(), poses[k].data(), identity.data(),
+                  &point.rho};
+      problem.AddResidualBlock(t.cost.get(), &loss, t.blocks);
+      terms.push_back(std::move(t));
+    }
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_SCHUR;
+  so.max_num_iterations = options.bundle_iterations;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  // Per axis, so that 1 px of feature noise reads about 1 px.
+  double sum = 0.0;
+  int count = 0;
+  for (const Term& t : terms) {
+    Eigen::Vector2d r;
+    if (t.cost->Evaluate(t.blocks.data(), r.data(), nullptr)) {
+      sum += r.squaredNorm();
+      count += 2;
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(poses[k].data());
+    T.linear() = Eigen::Quaterniond(poses[k].data() + 3).normalized().matrix();
+    (*T_v_c)[k] = T;
+  }
+  points->clear();
+  for (const auto& [id, point] : rho) {
+    if (!(point.rho > 0.0)) continue;
+    (*points)[id] = (*T_v_c)[point.anchor] *
+                    (frames[point.anchor].xy.at(id).homogeneous() / point.rho);
+  }
+  return count > 0 ? std::sqrt(sum / count) : 0.0;
+}
+
+}  // namespace
+
+double RotationCompensatedParallax(const std::vector<Eigen::Vector2d>& x_a,
+                                   const std::vector<Eigen::Vector2d>& x_b) {
+  if (x_a.empty() || x_a.size() != x_b.size()) return 0.0;
+  // Kabsch: R_b_a = argmin sum |f_b - R f_a|^2 over unit bearings, from the
+  // SVD of H = sum f_a f_b^T = U S V^T: R = V diag(1, 1, det(V U^T)) U^T.
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < x_a.size(); ++i) {
+    H += x_a[i].homogeneous().normalized() *
+         x_b[i].homogeneous().normalized().transpose();
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(
+      H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  D(2, 2) =
+      (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;
+  const Eigen::Matrix3d R = svd.matrixV() * D * svd.matrixU().transpose();
+  std::vector<double> d;
+  for (size_t i = 0; i < x_a.size(); ++i) {
+    const Eigen::Vector3d f = R * x_a[i].homogeneous();
+    if (f.z() <= 0.0) continue;
+    d.push_back((f.hnormalized() - x_b[i]).norm());
+  }
+  if (d.empty()) return 0.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
+                                   const SfmOptions& options) {
+  SfmResult result;
+  const int n = static_cast<int>(frames.size());
+  if (n < 2) {
+    result.failure = InitFailure::kTooFewFrames;
+    result.value = n;
+    result.limit = 2;
+    return result;
+  }
+  // 1. The oldest frame that pairs well with the newest; else the candidate
+  // that got furthest explains the failure.
+  Candidate best;
+  int l = -1;
+  for (int k = 0; k + 1 < n; ++k) {
+    Candidate c = TryPair(frames[k], frames[n - 1], options);
+    if (c.stage == kDone) {
+      best = std::move(c);
+      l = k;
+      break;
+    }
+    if (c.stage > best.stage ||
+        (c.stage == best.stage && c.value > best.value)) {
+      best = std::move(c);
+    }
+  }
+  result.parallax_px = best.parallax_px;
+  result.inliers = best.inliers;
+  if (l < 0) {
+    result.failure = best.failure;
+    result.value = best.value;
+    result.limit = best.limit;
+    return result;
+  }
+  result.reference = l;
+  // 2. The pair's inliers.
+  std::vector<Eigen::Isometry3d> T_v_c(n, Eigen::Isometry3d::Identity());
+  std::vector<bool> posed(n, false);
+  posed[l] = posed[n - 1] = true;
+  T_v_c[n - 1] = best.T_l_n;
+  std::map<int64_t, Eigen::Vector3d> points;
+  const std::set<int64_t> inliers(best.inlier_ids.begin(),
+                                  best.inlier_ids.end());
+  TriangulateMore(frames, posed, T_v_c, options, inliers, &points);
+  // 3. The other frames by PnP, nearest to a posed frame first.
+  std::vector<int> order;
+  for (int k = n - 2; k > l; --k) order.push_back(k);
+  for (int k = l - 1; k >= 0; --k) order.push_back(k);
+  for (int k : order) {
+    // Frame k + 1 is placed already, whichever side of l k lies on.
+    int pnp_inliers = 0;
+    if (!PlaceCameraByPnp(frames[k], points, T_v_c[k + 1], options, &T_v_c[k],
+                          &pnp_inliers)) {
+      result.failure = InitFailure::kPnpFailed;
+      result.value = pnp_inliers;
+      result.limit = options.min_pnp_inliers;
+      return result;
+    }
+    posed[k] = true;
+    TriangulateMore(frames, posed, T_v_c, options, {}, &points);
+  }
+  // 4. All of it adjusted together.
+  result.reprojection_rms_px =
+      BundleAdjust(frames, l, options, &T_v_c, &points);
+  if (!(result.reprojection_rms_px <= options.max_reprojection_rms_px)) {
+    result.failure = InitFailure::kReprojectionError;
+    result.value = result.reprojection_rms_px;
+    result.limit = options.max_reprojection_rms_px;
+    return result;
+  }
+  result.T_v_c = std::move(T_v_c);
+  result.points_v = std::move(points);
+  return result;
+}
+
+}  // namespace vio

@@ -1,0 +1,267 @@
+// init_benchmark: the figures of the starts in motion (docs/
+// initialisation.md). For each in-motion preset it simulates `--seeds`
+// sequences, each with its own seed and start phase (where on the lap the
+// first frame lies), runs the estimator until it starts, and prints the
+// distributions (median, p90, max) of
+//   - the time from the first frame to the accepted start [s],
+//   - the scale error of the first window: the RMS spread of its positions
+//     about their centroid against the truth's, minus 1 [%],
+//   - the gravity direction error: the angle between the estimated and the
+//     true world z seen from the newest frame [deg],
+//   - the gyroscope-bias error |b_g - b_g true| at the newest frame [rad/s],
+// with the share of starts within the target time, and the same scale error
+// for the linear alignment alone (before the joint adjustment). With --ate
+// it also replays whole sequences in motion and from rest (the same motion
+// after a 2 s still start) and prints both ATEs.
+//
+//   init_benchmark [--preset NAME]... [--seeds N] [--seconds S] [--ate]
+//                  [--verbose]
+// NAME: motion_mono, motion_stereo, handheld (default: all three), or any
+// config/sim_NAME.yaml. Deterministic; not run by ctest.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "config/simulator_config.h"
+#include "dataset/simulator.h"
+#include "estimator/estimator.h"
+#include "estimator/sequence_runner.h"
+#include "test/testing/sim_replay.h"
+
+namespace vio {
+namespace {
+
+struct Args {
+  std::vector<std::string> presets;
+  int seeds = 20;
+  double seconds = 6.0;  // simulated per start trial [s]
+  bool ate = false;
+  bool verbose = false;
+};
+
+Args Parse(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string s = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(s + " needs a value");
+      return argv[++i];
+    };
+    if (s == "--preset") {
+      a.presets.push_back(value());
+    } else if (s == "--seeds") {
+      a.seeds = std::stoi(value());
+    } else if (s == "--seconds") {
+      a.seconds = std::stod(value());
+    } else if (s == "--ate") {
+      a.ate = true;
+    } else if (s == "--verbose") {
+      a.verbose = true;
+    } else {
+      throw std::invalid_argument("unknown option " + s);
+    }
+  }
+  if (a.presets.empty())
+    a.presets = {"motion_mono", "motion_stereo", "handheld"};
+  return a;
+}
+
+struct Distribution {
+  std::vector<double> values;
+  void Add(double v) { values.push_back(v); }
+  double Quantile(double q) const {
+    if (values.empty()) return NAN;
+    std::vector<double> v = values;
+    std::sort(v.begin(), v.end());
+    const size_t k = static_cast<size_t>(q * (v.size() - 1) + 0.5);
+    return v[std::min(k, v.size() - 1)];
+  }
+  std::string Describe(double scale, const char* unit) const {
+    char b[160];
+    std::snprintf(b, sizeof(b), "median %.3g, p90 %.3g, max %.3g %s",
+                  scale * Quantile(0.5), scale * Quantile(0.9),
+                  scale * Quantile(1.0), unit);
+    return b;
+  }
+};
+
+const StampedState& TruthAt(const Simulation& sim, int64_t t_ns) {
+  const auto it = std::lower_bound(
+      sim.ground_truth.begin(), sim.ground_truth.end(), t_ns,
+      [](const StampedState& s, int64_t t) { return s.t_ns < t; });
+  return it == sim.ground_truth.end() ? sim.ground_truth.back() : *it;
+}
+
+// RMS distance of the points from their centroid.
+double Spread(const std::vector<Eigen::Vector3d>& p) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& x : p) c += x;
+  c /= static_cast<double>(p.size());
+  double s = 0.0;
+  for (const auto& x : p) s += (x - c).squaredNorm();
+  return std::sqrt(s / p.size());
+}
+
+struct Trial {
+  bool started = false;
+  double time_s = 0.0;
+  double scale_error = 0.0;            // after the joint adjustment
+  double alignment_scale_error = 0.0;  // the linear alignment's
+  double gravity_deg = 0.0;
+  double gyro_bias = 0.0;
+  InitMethod method = InitMethod::kAuto;
+  std::string failures;
+};
+
+Trial RunTrial(const SimulatorOptions& sim_options) {
+  const Simulation sim = Simulate(sim_options);
+  const testing::PreparedSimulation prepared = testing::Prepare(sim);
+  const EstimatorOptions options = testing::OptionsFor(sim_options);
+  Estimator estimator(options, VisualFactorOptions(), sim_options.imu.noise,
+                      PreintegrationOptions(), prepared.cameras);
+  // Feed until the first start.
+  size_t next_imu = 0;
+  Trial t;
+  for (const FeatureFrame& frame : prepared.frames) {
+    while (next_imu < sim.imu.size()) {
+      const ImuSample& s = sim.imu[next_imu++];
+      estimator.AddImu(s);
+      if (s.t_ns >= frame.t_ns) break;
+    }
+    estimator.AddFrame(frame);
+    if (!estimator.summary().starts.empty()) break;
+  }
+  const EstimatorSummary& summary = estimator.summary();
+  if (summary.starts.empty()) {
+    t.failures = DescribeNoStart(summary);
+    return t;
+  }
+  const StartRecord& start = summary.starts.front();
+  t.started = true;
+  t.method = start.method;
+  t.time_s = 1e-9 * static_cast<double>(start.t_ns - prepared.frames[0].t_ns);
+  std::vector<Eigen::Vector3d> est, truth;
+  for (const InitialFrame& f : start.window) {
+    est.push_back(f.p_w_b);
+    truth.push_back(TruthAt(sim, f.t_imu_ns).p_w_b);
+  }
+  const double ratio = Spread(est) / Spread(truth);
+  t.scale_error = ratio - 1.0;
+  t.alignment_scale_error =
+      ratio / (1.0 + start.diagnostics.refine_scale_change) - 1.0;
+  const InitialFrame& newest = start.window.back();
+  const StampedState& gt = TruthAt(sim, newest.t_imu_ns);
+  const Eigen::Vector3d z_est =
+      newest.q_w_b.conjugate() * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d z_true =
+      gt.q_w_b.conjugate() * Eigen::Vector3d::UnitZ();
+  t.gravity_deg =
+      std::atan2(z_est.cross(z_true).norm(), z_est.dot(z_true)) * 180.0 / M_PI;
+  t.gyro_bias = (newest.b_g - gt.b_g).norm();
+  if (!summary.init_attempts.empty()) {
+    t.failures = DescribeInitFailures(summary.init_attempts);
+  }
+  return t;
+}
+
+void StartFigures(const std::string& preset, const Args& args) {
+  const SimulatorOptions base = LoadSimulatorOptions(
+      std::string(VIO_SOURCE_DIR) + "/config/sim_" + preset + ".yaml");
+  const double target_s = base.camera.stereo ? 0.5 : 2.0;
+  Distribution time, scale, align, gravity, bias;
+  int started = 0, within = 0;
+  for (int k = 0; k < args.seeds; ++k) {
+    SimulatorOptions o = base;
+    o.seed = static_cast<uint32_t>(1000 + k);
+    // Start phases spread over one lap.
+    o.motion.start_phase_s =
+        base.motion.start_phase_s + k * base.motion.lap_period_s / args.seeds;
+    o.duration_s = args.seconds;
+    const Trial t = RunTrial(o);
+    if (args.verbose) {
+      std::printf("  seed %u phase %.2f s: %s", o.seed, o.motion.start_phase_s,
+                  t.started ? "started" : "no start");
+      if (t.started) {
+        std::printf(
+            " (%s) after %.2f s, scale %+.2f %% (alignment %+.2f %%), "
+            "gravity %.3f deg, b_g %.5f",
+            InitMethodName(t.method), t.time_s, 100 * t.scale_error,
+            100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias);
+      }
+      std::printf("\n    %s\n", t.failures.c_str());
+    }
+    if (!t.started) continue;
+    ++started;
+    within += t.time_s <= target_s ? 1 : 0;
+    time.Add(t.time_s);
+    scale.Add(std::abs(t.scale_error));
+    align.Add(std::abs(t.alignment_scale_error));
+    gravity.Add(t.gravity_deg);
+    bias.Add(t.gyro_bias);
+  }
+  std::printf("%s: %d trials (seeds x start phases), %.1f s each\n",
+              preset.c_str(), args.seeds, args.seconds);
+  std::printf("  started %d (%.0f %%), within %.1f s %d (%.0f %%)\n", started,
+              100.0 * started / args.seeds, target_s, within,
+              100.0 * within / args.seeds);
+  std::printf("  time to start     %s\n", time.Describe(1.0, "s").c_str());
+  std::printf("  scale error       %s\n", scale.Describe(100.0, "%").c_str());
+  std::printf("    alignment alone %s\n", align.Describe(100.0, "%").c_str());
+  std::printf("  gravity error     %s\n", gravity.Describe(1.0, "deg").c_str());
+  std::printf("  gyro bias error   %s\n", bias.Describe(1.0, "rad/s").c_str());
+}
+
+void AteFigures(const std::string& preset, const Args& args) {
+  const SimulatorOptions base = LoadSimulatorOptions(
+      std::string(VIO_SOURCE_DIR) + "/config/sim_" + preset + ".yaml");
+  const int runs = std::min(args.seeds, 5);
+  Distribution moving, rest;
+  for (int k = 0; k < runs; ++k) {
+    SimulatorOptions o = base;
+    o.seed = static_cast<uint32_t>(2000 + k);
+    o.motion.start_phase_s =
+        base.motion.start_phase_s + k * base.motion.lap_period_s / runs;
+    const testing::SimReplay a =
+        testing::ReplaySimulation(Simulate(o), testing::OptionsFor(o));
+    // The same motion from rest: a 2 s still start blending into it.
+    SimulatorOptions r = o;
+    r.motion.still_duration_s = 2.0;
+    r.motion.blend_duration_s = 2.0;
+    const testing::SimReplay b =
+        testing::ReplaySimulation(Simulate(r), testing::OptionsFor(r));
+    moving.Add(a.ate_rmse_m);
+    rest.Add(b.ate_rmse_m);
+    std::printf(
+        "  %s seed %u: ATE in motion %.4f m (resets %lld), from rest "
+        "%.4f m (resets %lld)\n",
+        preset.c_str(), o.seed, a.ate_rmse_m,
+        static_cast<long long>(a.summary.resets), b.ate_rmse_m,
+        static_cast<long long>(b.summary.resets));
+  }
+  std::printf("%s ATE over %d runs of %.0f s: in motion %s; from rest %s\n",
+              preset.c_str(), runs, base.duration_s,
+              moving.Describe(1.0, "m").c_str(),
+              rest.Describe(1.0, "m").c_str());
+}
+
+}  // namespace
+}  // namespace vio
+
+int main(int argc, char** argv) {
+  try {
+    const vio::Args args = vio::Parse(argc, argv);
+    for (const std::string& p : args.presets) {
+      vio::StartFigures(p, args);
+      if (args.ate) vio::AteFigures(p, args);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+}
