@@ -56,6 +56,9 @@ FactorCase MakeTimedStereoTwoFrameReprojectionCase(
 // The marginalisation prior (factors/marginalization_prior.h).
 FactorCase MakeMarginalizationPriorCase();
 
+// The photometric factor (factors/photometric_factor.h) on a synthetic
+// smooth image; check/photometric_factor_case.cc.
+FactorCase MakePhotometricCase();
 // The zero-motion factor of a still vehicle (factors/zero_motion_factor.h).
 FactorCase MakeZeroMotionFactorCase();
 
