@@ -254,10 +254,12 @@ ImageReplay ReplayImages(const EurocSequence& seq,
                    [&](FeatureFrame&& frame) {
                      replay.outputs.push_back(runner.AddFrame(frame));
                      progress.Update(replay.outputs.size() - 1);
-                     if (!keep_tracks) {
-                       frame.observations = {};
+                     if (keep_tracks) {
+                       replay.frames.push_back(std::move(frame));
+                     } else {  // the stamp only: frees the observations
+                       replay.frames.emplace_back();
+                       replay.frames.back().t_ns = frame.t_ns;
                      }
-                     replay.frames.push_back(std::move(frame));
                    },
                    pipeline);
   replay.cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
