@@ -15,6 +15,7 @@
 // estimate the alignment approximates; docs/initialisation.md has the
 // figures before and after it.
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -204,6 +205,10 @@ InitFailure Estimator::RefineStart(double* value, double* limit) {
   if (options_.init.refine_iterations > 0) {
     SolverOptions solver = options_.solver;
     solver.max_iterations = options_.init.refine_iterations;
+    // A step starts from the prediction, near its minimum, and stops at a
+    // 1e-3 relative cost change; this solve starts from the alignment, far
+    // from it (the scale ~10 % off), and runs to Ceres' default 1e-6.
+    solver.function_tolerance = std::min(solver.function_tolerance, 1e-6);
     problem.Solve(solver);
   }
   // The failure rules of a step, against the alignment's newest state.

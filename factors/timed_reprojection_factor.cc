@@ -75,6 +75,18 @@ TimedStereoTwoFrameReprojectionFactor::TimedStereoTwoFrameReprojectionFactor(
 bool TimedStereoTwoFrameReprojectionFactor::Evaluate(
     double const* const* parameters, double* residuals,
     double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/false);
+}
+
+bool TimedStereoTwoFrameReprojectionFactor::EvaluateTangent(
+    double const* const* parameters, double* residuals,
+    double** jacobians) const {
+  return Compute(parameters, residuals, jacobians, /*tangent=*/true);
+}
+
+bool TimedStereoTwoFrameReprojectionFactor::Compute(
+    double const* const* parameters, double* residuals, double** jacobians,
+    bool tangent) const {
   const double t_d = parameters[kTimeOffset][0];
   const Eigen::Vector2d xy_i = Shifted(obs_i_, t_d);
   const Eigen::Vector3d f_i(xy_i.x(), xy_i.y(), 1.0);
@@ -95,7 +107,8 @@ bool TimedStereoTwoFrameReprojectionFactor::Evaluate(
       p, chain,
       {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kAnchorExtrinsic,
        ChainBlock::kTargetExtrinsic, ChainBlock::kInverseDepth},
-      parameters, jacobians);
+      parameters, jacobians,
+      tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
   if (jacobians[kTimeOffset] != nullptr) {
     // As in TimedReprojectionFactor: d f_i / d t_d = (-v_i, 0) through the
     // chain, and -d xy_j(t_d) / d t_d = v_j directly:

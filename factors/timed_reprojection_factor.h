@@ -79,7 +79,8 @@ class TimedReprojectionFactor final
 // Parameter blocks, in this order:
 //   pose_i (7), pose_j (7), T_b_c0 (7), T_b_c1 (7), rho (1), t_d (1)
 class TimedStereoTwoFrameReprojectionFactor final
-    : public ceres::SizedCostFunction<2, 7, 7, 7, 7, 1, 1> {
+    : public ceres::SizedCostFunction<2, 7, 7, 7, 7, 1, 1>,
+      public TangentJacobians {
  public:
   enum Block {
     kPoseI = 0,
@@ -98,8 +99,14 @@ class TimedStereoTwoFrameReprojectionFactor final
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
+  bool EvaluateTangent(double const* const* parameters, double* residuals,
+                       double** jacobians) const override;
 
  private:
+  // Evaluate (tangent false) or EvaluateTangent (tangent true).
+  bool Compute(double const* const* parameters, double* residuals,
+               double** jacobians, bool tangent) const;
+
   TimedObservation obs_i_;
   TimedObservation obs_j_;
   double sqrt_info_;
