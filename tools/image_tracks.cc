@@ -46,9 +46,10 @@ int64_t ImageTrackingSummary::skipped() const {
   return n;
 }
 
-std::vector<FeatureFrame> TrackEurocImages(const EurocSequence& sequence,
-                                           const FrontendOptions& options,
-                                           ImageTrackingSummary* summary) {
+EurocImageStream::EurocImageStream(const EurocSequence& sequence,
+                                   const FrontendOptions& options,
+                                   bool with_observations)
+    : sequence_(sequence) {
   const std::vector<EurocCamera>& cameras = sequence.data.cameras;
   const int needed = options.stereo ? 2 : 1;
   if (static_cast<int>(cameras.size()) < needed ||
@@ -64,63 +65,94 @@ std::vector<FeatureFrame> TrackEurocImages(const EurocSequence& sequence,
                                   std::to_string(c) + " has no data.csv");
     }
   }
-  *summary = ImageTrackingSummary();
-  const CameraModel cam0(sequence.cameras[0]);
-  const CameraModel cam1(sequence.cameras[needed - 1]);
-  ImageFrontend frontend(cam0, options.stereo ? &cam1 : nullptr, options);
-
-  std::map<int64_t, const ImageEntry*> right_by_stamp;
-  if (options.stereo) {
-    summary->cameras[1].missing = cameras[1].missing_images;
-    for (const ImageEntry& e : cameras[1].images) right_by_stamp[e.t_ns] = &e;
+  cam0_ = std::make_unique<CameraModel>(sequence.cameras[0]);
+  cam1_ = std::make_unique<CameraModel>(sequence.cameras[needed - 1]);
+  frontend_ = std::make_unique<ImageFrontend>(
+      *cam0_, options.stereo ? cam1_.get() : nullptr, options);
+  if (with_observations) {
+    std::vector<CameraModel> models;
+    for (int c = 0; c < needed; ++c) models.emplace_back(sequence.cameras[c]);
+    builder_ = std::make_unique<ObservationBuilder>(models);
   }
-  summary->cameras[0].missing = cameras[0].missing_images;
-  std::vector<FeatureFrame> frames;
-  for (const ImageEntry& entry : cameras[0].images) {
+  if (options.stereo) {
+    summary_.cameras[1].missing = cameras[1].missing_images;
+    for (const ImageEntry& e : cameras[1].images) right_by_stamp_[e.t_ns] = &e;
+  }
+  summary_.cameras[0].missing = cameras[0].missing_images;
+}
+
+EurocImageStream::~EurocImageStream() = default;
+
+const ObservationBuilderSummary& EurocImageStream::builder_summary() const {
+  static const ObservationBuilderSummary kNone;
+  return builder_ ? builder_->summary() : kNone;
+}
+
+bool EurocImageStream::Next(FeatureFrame* frame) {
+  const std::vector<ImageEntry>& images = sequence_.data.cameras[0].images;
+  ImageTrackingSummary* summary = &summary_;
+  while (next_ < images.size()) {
+    const ImageEntry& entry = images[next_++];
     Clock::time_point start = Clock::now();
     const cv::Mat left =
-        ReadImage(entry.path, sequence.cameras[0], &summary->cameras[0]);
+        ReadImage(entry.path, sequence_.cameras[0], &summary->cameras[0]);
     cv::Mat right;
-    auto it = right_by_stamp.find(entry.t_ns);
-    if (it != right_by_stamp.end()) {
+    auto it = right_by_stamp_.find(entry.t_ns);
+    if (it != right_by_stamp_.end()) {
       if (!left.empty()) {
-        right = ReadImage(it->second->path, sequence.cameras[1],
+        right = ReadImage(it->second->path, sequence_.cameras[1],
                           &summary->cameras[1]);
       } else {
         ++summary->cameras[1].unpaired;
       }
-      right_by_stamp.erase(it);
+      right_by_stamp_.erase(it);
     }
     summary->read_seconds += SecondsSince(start);
     if (left.empty()) continue;
     start = Clock::now();
     const std::clock_t cpu_start = std::clock();
-    frames.push_back(frontend.Process(entry.t_ns, left, right));
+    *frame = frontend_->Process(entry.t_ns, left, right);
     summary->track_cpu_seconds +=
         static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     summary->track_seconds += SecondsSince(start);
     ++summary->frames;
-    if (frontend.stats().stereo_matched) ++summary->stereo_frames;
-    for (const FeatureObservation& o : frames.back().observations) {
+    if (frontend_->stats().stereo_matched) ++summary->stereo_frames;
+    for (const FeatureObservation& o : frame->observations) {
       ++summary->observations[o.camera == 0 ? 0 : 1];
     }
+    if (builder_) builder_->Process(frame);
+    if (next_ == images.size()) {
+      summary->cameras[1].unpaired +=
+          static_cast<int64_t>(right_by_stamp_.size());
+      right_by_stamp_.clear();
+    }
+    return true;
   }
-  summary->cameras[1].unpaired += static_cast<int64_t>(right_by_stamp.size());
+  summary->cameras[1].unpaired += static_cast<int64_t>(right_by_stamp_.size());
+  right_by_stamp_.clear();
+  return false;
+}
+
+std::vector<FeatureFrame> TrackEurocImages(const EurocSequence& sequence,
+                                           const FrontendOptions& options,
+                                           ImageTrackingSummary* summary) {
+  EurocImageStream stream(sequence, options, false);
+  std::vector<FeatureFrame> frames;
+  FeatureFrame frame;
+  while (stream.Next(&frame)) frames.push_back(std::move(frame));
+  *summary = stream.summary();
   return frames;
 }
 
 std::vector<FeatureFrame> ImageObservations(
     const EurocSequence& sequence, const FrontendOptions& options,
     ImageTrackingSummary* summary, ObservationBuilderSummary* builder) {
-  std::vector<FeatureFrame> frames =
-      TrackEurocImages(sequence, options, summary);
-  std::vector<CameraModel> models;
-  for (int c = 0; c < (options.stereo ? 2 : 1); ++c) {
-    models.emplace_back(sequence.cameras[c]);
-  }
-  ObservationBuilder observation_builder(models);
-  for (FeatureFrame& frame : frames) observation_builder.Process(&frame);
-  if (builder) *builder = observation_builder.summary();
+  EurocImageStream stream(sequence, options, true);
+  std::vector<FeatureFrame> frames;
+  FeatureFrame frame;
+  while (stream.Next(&frame)) frames.push_back(std::move(frame));
+  *summary = stream.summary();
+  if (builder) *builder = stream.builder_summary();
   return frames;
 }
 

@@ -12,6 +12,8 @@
 // cam0 alone.
 
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,8 @@
 #include "geometry/feature_observation.h"
 
 namespace vio {
+
+class ImageFrontend;  // frontend/image_frontend.h
 
 // Counts for one camera.
 struct ImageCounts {
@@ -41,6 +45,35 @@ struct ImageTrackingSummary {
   double track_cpu_seconds = 0.0;  // process CPU time in the frontend [s]
 
   int64_t skipped() const;  // missing + unreadable + wrong size, both cameras
+};
+
+// The sequence's images tracked one frame at a time, read as they are asked
+// for (vio_replay's pipeline): the same frames, in the same order, as
+// TrackEurocImages / ImageObservations. Throws std::invalid_argument on
+// construction as TrackEurocImages does.
+class EurocImageStream {
+ public:
+  // with_observations: also the observation step (ImageObservations);
+  // otherwise the frames of TrackEurocImages. `sequence` must outlive this.
+  EurocImageStream(const EurocSequence& sequence,
+                   const FrontendOptions& options, bool with_observations);
+  ~EurocImageStream();
+
+  // Reads and tracks the next good cam0 image into *frame; false at the end.
+  bool Next(FeatureFrame* frame);
+
+  const ImageTrackingSummary& summary() const { return summary_; }
+  const ObservationBuilderSummary& builder_summary() const;
+
+ private:
+  const EurocSequence& sequence_;
+  ImageTrackingSummary summary_;
+  std::unique_ptr<CameraModel> cam0_;
+  std::unique_ptr<CameraModel> cam1_;
+  std::unique_ptr<ImageFrontend> frontend_;
+  std::unique_ptr<ObservationBuilder> builder_;  // null: no observation step
+  std::map<int64_t, const ImageEntry*> right_by_stamp_;
+  size_t next_ = 0;  // the next cam0 image
 };
 
 // Tracks the sequence's images (cam0, and cam1 when options.stereo). The

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <exception>
 #include <filesystem>
 #include <stdexcept>
@@ -24,6 +25,7 @@
 #include "estimator/sequence_runner.h"
 #include "frontend/observation_builder.h"
 #include "tools/command_line.h"
+#include "tools/frame_pipeline.h"
 #include "tools/image_tracks.h"
 #include "tools/replay_health.h"
 #include "tools/vio_replay_report.h"
@@ -35,7 +37,8 @@ using namespace vio;  // NOLINT(build/namespaces): a tool's main file
 
 constexpr char kUsage[] =
     "usage: vio_replay [SEQUENCE] [--config FILE] [--out DIR]\n"
-    "                  [--save-tracks FILE] [--strict] [--help]\n"
+    "                  [--save-tracks FILE] [--strict] [--sequential]\n"
+    "                  [--queue-frames N] [--help]\n"
     "\n"
     "Replays SEQUENCE (a folder in the EuRoC ASL layout whose cameras carry\n"
     "features.csv, e.g. written by vio_sim, or images: data.csv + data/,\n"
@@ -62,6 +65,11 @@ constexpr char kUsage[] =
     "                 .cam1 before the extension\n"
     "  --strict       refuse an IMU file whose stamps repeat or go backwards\n"
     "                 (default: such lines are dropped, counted and warned)\n"
+    "  --sequential   images: read and track each frame, then estimate it,\n"
+    "                 on one thread (default: the frontend runs on a second\n"
+    "                 thread, ahead of the estimator; same output)\n"
+    "  --queue-frames N  images: how many tracked frames the frontend may\n"
+    "                 be ahead of the estimator (default 8, >= 1)\n"
     "\n"
     "Bad input is survived and reported (docs/robustness.md): a warning\n"
     "line per fault, counts in the summary. Exit status: 0 when most frames\n"
@@ -83,7 +91,8 @@ struct Args {
   std::string save_tracks;     // empty: not written
   bool has_imu_noise = false;  // --imu-noise given: overrides imu.noise_from
   ImuNoiseSource imu_noise = ImuNoiseSource::kConfig;
-  bool strict = false;  // refuse repeated or disordered IMU stamps
+  bool strict = false;       // refuse repeated or disordered IMU stamps
+  PipelineOptions pipeline;  // images: frontend thread or --sequential
   bool help = false;
 };
 
@@ -107,6 +116,22 @@ Args ParseArgs(int argc, char** argv) {
       args.has_imu_noise = true;
     } else if (a == "--strict") {
       args.strict = true;
+    } else if (a == "--sequential") {
+      args.pipeline.sequential = true;
+    } else if (a == "--queue-frames") {
+      const std::string value = line.Value();
+      size_t used = 0;
+      int n = 0;
+      try {
+        n = std::stoi(value, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != value.size() || n < 1) {
+        throw std::invalid_argument(
+            "--queue-frames expects a whole number >= 1 (got '" + value + "')");
+      }
+      args.pipeline.queue_frames = n;
     } else if (a == "--help" || a == "-h") {
       args.help = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -168,22 +193,83 @@ bool UsesImages(const EurocSequence& seq, int cameras_used) {
   return true;
 }
 
-// Frames with xy and velocity, tracked from the images.
-std::vector<FeatureFrame> TrackedObservations(
-    const EurocSequence& seq, int cameras_used, Config config,
-    ImageTrackingSummary* summary, ObservationBuilderSummary* removed) {
+// The frontend options for tracking the images (announced on stdout).
+FrontendOptions ImageFrontendOptions(int cameras_used, const Config& config,
+                                     const PipelineOptions& pipeline) {
   if (!config.frontend_missing.empty()) {
     throw ConfigError(config.frontend_missing);
   }
-  config.frontend.stereo = cameras_used == 2;
-  const FrontendOptions& f = config.frontend;
+  FrontendOptions f = config.frontend;
+  f.stereo = cameras_used == 2;
   std::printf(
       "frontend: %s, %d features, min distance %.0f px, CLAHE %s, "
-      "fundamental check %s\n",
+      "fundamental check %s; %s\n",
       f.stereo ? "stereo" : "mono", f.tracker.max_features,
       f.tracker.min_distance_px, f.tracker.clahe ? "on" : "off",
-      f.tracker.fundamental_check ? "on" : "off");
-  return ImageObservations(seq, config.frontend, summary, removed);
+      f.tracker.fundamental_check ? "on" : "off",
+      pipeline.sequential ? "sequential (one thread)"
+                          : ("pipelined (frontend thread, queue of " +
+                             std::to_string(pipeline.queue_frames) + " frames)")
+                                .c_str());
+  return f;
+}
+
+// The frames vio_replay expects from the images (cam0's listed images that
+// exist), stamps only: the progress display's total.
+std::vector<FeatureFrame> ExpectedImageFrames(const EurocSequence& seq) {
+  std::vector<FeatureFrame> frames;
+  for (const ImageEntry& e : seq.data.cameras[0].images) {
+    frames.emplace_back();
+    frames.back().t_ns = e.t_ns;
+  }
+  return frames;
+}
+
+// What an image replay produced: one output per frame; the frames with
+// their observations only when kept (--save-tracks), stamps otherwise, so
+// memory does not grow with the sequence beyond the outputs.
+struct ImageReplay {
+  std::vector<EstimatorOutput> outputs;
+  std::vector<FeatureFrame> frames;
+  double wall_s = 0.0;  // images, frontend and estimator [s]
+  double cpu_s = 0.0;   // process CPU over the same span [s]
+};
+
+// Reads, tracks and estimates the images frame by frame: the frontend on a
+// second thread ahead of the estimator, or both on this one (--sequential).
+// The estimator gets the same frames in the same order either way.
+ImageReplay ReplayImages(const EurocSequence& seq,
+                         const FrontendOptions& frontend,
+                         const PipelineOptions& pipeline, bool keep_tracks,
+                         Estimator* estimator, ImageTrackingSummary* summary,
+                         ObservationBuilderSummary* removed) {
+  EurocImageStream stream(seq, frontend, true);
+  StreamingRunner runner(estimator, &seq.data.imu);
+  const std::vector<FeatureFrame> expected = ExpectedImageFrames(seq);
+  Progress progress(expected);
+  ImageReplay replay;
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  RunFramePipeline([&](FeatureFrame* frame) { return stream.Next(frame); },
+                   [&](FeatureFrame&& frame) {
+                     replay.outputs.push_back(runner.AddFrame(frame));
+                     progress.Update(replay.outputs.size() - 1);
+                     if (keep_tracks) {
+                       replay.frames.push_back(std::move(frame));
+                     } else {  // the stamp only: frees the observations
+                       replay.frames.emplace_back();
+                       replay.frames.back().t_ns = frame.t_ns;
+                     }
+                   },
+                   pipeline);
+  replay.cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  replay.wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  progress.Finish();
+  *summary = stream.summary();
+  *removed = stream.builder_summary();
+  return replay;
 }
 
 // Frames with xy and velocity, from each camera's features.csv.
@@ -304,11 +390,14 @@ int main(int argc, char** argv) {
     input.imu_file = JoinPath(folder, "mav0/imu0/data.csv");
     input.imu_stamps = seq.data.imu_stamps;
     input.start_ns = seq.data.start_ns;
-    const std::vector<FeatureFrame> frames =
-        images ? TrackedObservations(seq, used, config, &image_summary,
-                                     &input.observations)
-               : Observations(seq, used, &input.observations);
-    if (!args.save_tracks.empty()) {
+    // Images are tracked while the estimator runs (ReplayImages); features
+    // are read whole first.
+    const FrontendOptions frontend =
+        images ? ImageFrontendOptions(used, config, args.pipeline)
+               : FrontendOptions();
+    std::vector<FeatureFrame> frames;
+    if (!images) frames = Observations(seq, used, &input.observations);
+    if (!images && !args.save_tracks.empty()) {
       for (const std::string& file :
            SaveTracks(args.save_tracks, frames, used)) {
         std::printf("wrote %s\n", file.c_str());
@@ -320,15 +409,34 @@ int main(int argc, char** argv) {
     std::printf("imu noise: %s\n", noise_description.c_str());
     Estimator estimator(config.estimator, config.visual, noise,
                         config.imu.preintegration, Cameras(seq, used));
-    Progress progress(frames);
-    const auto start = std::chrono::steady_clock::now();
-    const std::vector<EstimatorOutput> outputs = RunSequence(
-        &estimator, seq.data.imu, frames,
-        [&](size_t i, const EstimatorOutput&) { progress.Update(i); });
-    const double wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-            .count();
-    progress.Finish();
+    std::vector<EstimatorOutput> outputs;
+    double wall_s = 0.0;
+    double cpu_s = 0.0;
+    if (images) {
+      ImageReplay replay =
+          ReplayImages(seq, frontend, args.pipeline, !args.save_tracks.empty(),
+                       &estimator, &image_summary, &input.observations);
+      outputs = std::move(replay.outputs);
+      frames = std::move(replay.frames);
+      wall_s = replay.wall_s;
+      cpu_s = replay.cpu_s;
+      if (!args.save_tracks.empty()) {
+        for (const std::string& file :
+             SaveTracks(args.save_tracks, frames, used)) {
+          std::printf("wrote %s\n", file.c_str());
+        }
+      }
+    } else {
+      Progress progress(frames);
+      const auto start = std::chrono::steady_clock::now();
+      outputs = RunSequence(
+          &estimator, seq.data.imu, frames,
+          [&](size_t i, const EstimatorOutput&) { progress.Update(i); });
+      wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                             start)
+                   .count();
+      progress.Finish();
+    }
     fs::create_directories(args.out);
     const Trajectory estimate = WriteOutputs(args.out, outputs);
     WriteLandmarks(args.out, estimator);
@@ -349,20 +457,25 @@ int main(int argc, char** argv) {
     if (images) {
       const double n = static_cast<double>(image_summary.frames);
       std::printf("%s", DescribeImageTracking(image_summary, used).c_str());
+      // Pipelined, the process CPU clock also counts the estimator's thread
+      // while the frontend runs: the frontend's CPU figure is sequential's.
+      if (args.pipeline.sequential) {
+        std::printf("  frontend    %.2f ms/frame CPU, ",
+                    n > 0 ? 1e3 * image_summary.track_cpu_seconds / n : 0.0);
+      } else {
+        std::printf("  frontend    ");
+      }
       std::printf(
-          "  frontend    %.2f ms/frame CPU, %.2f ms wall (%.1f "
-          "frames/s); image decoding %.2f ms/frame\n",
-          n > 0 ? 1e3 * image_summary.track_cpu_seconds / n : 0.0,
+          "%.2f ms wall (%.1f frames/s); image decoding %.2f ms/frame\n",
           n > 0 ? 1e3 * image_summary.track_seconds / n : 0.0,
           image_summary.track_seconds > 0 ? n / image_summary.track_seconds
                                           : 0.0,
           n > 0 ? 1e3 * image_summary.read_seconds / n : 0.0);
-      const double total_s =
-          image_summary.read_seconds + image_summary.track_seconds + wall_s;
       std::printf(
-          "  full replay %.1f frames/s wall (images, frontend and "
-          "estimator)\n",
-          total_s > 0 ? n / total_s : 0.0);
+          "  full replay %.1f frames/s wall, %.2f ms/frame process CPU "
+          "(images, frontend and estimator, %s)\n",
+          wall_s > 0 ? n / wall_s : 0.0, n > 0 ? 1e3 * cpu_s / n : 0.0,
+          args.pipeline.sequential ? "sequential" : "pipelined");
     }
     const std::string late =
         LateStartWarning(estimator.summary(), seq.data.start_ns);
