@@ -20,7 +20,7 @@ TEST(EstimatorOptions, DefaultsAreValidAndMatchTheDesign) {
   EXPECT_EQ(o.solver.max_time_s, 0.0);
   // Start wherever the vehicle is; hold still when still.
   EXPECT_EQ(o.init.method, InitMethod::kAuto);
-  EXPECT_TRUE(o.init.reinitialize_after_reset);
+  EXPECT_FALSE(o.init.reinitialize_after_reset);
   EXPECT_TRUE(o.zero_velocity.enabled);
 }
 
