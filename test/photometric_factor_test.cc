@@ -174,7 +174,11 @@ TEST(PhotometricFactor, GradientCheckerAgreesOnTheSyntheticCase) {
     numeric.ridders_relative_initial_step_size = 1e-6;
     const ceres::GradientChecker checker(f.cost.get(), &manifolds, numeric);
     ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(params.data(), 2e-4, &results))
+    // 1e-3: Ceres compares element by element, and a component 1e-9 of its
+    // row's largest is differenced with the row's absolute error (clang -O1,
+    // the sanitizer build: -9.64e-7 beside 283.8, 2.2e-10 apart, relative
+    // 2.3e-4). A sign or a dropped term is off by order 1.
+    EXPECT_TRUE(checker.Probe(params.data(), 1e-3, &results))
         << "trial " << t << "\n"
         << results.error_log;
   }
