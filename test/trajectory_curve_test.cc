@@ -122,8 +122,12 @@ TEST(TrajectoryCurve, PassesThroughEurocMh05GroundTruthWithinItsNoise) {
 TEST(TrajectoryCurve, FitsRotationsWithTheirOwnKnotSpacing) {
   // MH_05's attitude (EuRoC's estimate, with the IMU) has content that
   // 0.05 s knots smooth; rotation knots 0.0125 s apart follow it while the
-  // positions keep their 0.05 s spline.
-  const std::vector<StampedState> states = GroundTruth("euroc_MH_05_imu_gt");
+  // positions keep their 0.05 s spline. 20 s of the flight (30 to 50 s in),
+  // to keep the test fast.
+  const std::vector<StampedState> all = GroundTruth("euroc_MH_05_imu_gt");
+  ASSERT_GT(all.size(), 10000u);
+  const std::vector<StampedState> states(all.begin() + 6000,
+                                         all.begin() + 10000);
   CurveFitOptions options;
   const TrajectoryCurve coarse(Poses(states), options);
   options.rotation_knot_spacing_s = 0.0125;
@@ -135,7 +139,7 @@ TEST(TrajectoryCurve, FitsRotationsWithTheirOwnKnotSpacing) {
   EXPECT_LT(fine.report().rotation_max_rad, 2e-3);
   EXPECT_DOUBLE_EQ(fine.report().position_rms_m,
                    coarse.report().position_rms_m);
-  for (const double t : {1.0, 37.3, 80.0}) {
+  for (const double t : {1.0, 7.3, 15.0}) {
     const SimState a = coarse.At(t);
     const SimState b = fine.At(t);
     EXPECT_EQ(a.p_w_b, b.p_w_b);
