@@ -15,10 +15,6 @@
 #include <string>
 #include <vector>
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include "config/estimator_config.h"
 #include "config/euroc_sequence.h"
 #include "config/frontend_config.h"
@@ -370,15 +366,6 @@ void WriteLandmarks(const std::string& dir, const Estimator& estimator) {
 }  // namespace
 
 int main(int argc, char** argv) {
-#ifdef __GLIBC__
-  // An image replay allocates and frees the same few megabytes per frame
-  // (pyramids, the corner response, decoded images). glibc's default gives
-  // large blocks back to the kernel on free and takes them again zeroed,
-  // page by page (9 % of the stereo replay's samples went to page faults,
-  // docs/speed.md); kept in the heap, they are reused as they are.
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 256 << 20);
-#endif
   try {
     const Args args = ParseArgs(argc, argv);
     if (args.help) {
