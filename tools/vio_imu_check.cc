@@ -46,7 +46,8 @@ constexpr char kUsage[] =
 "  --rotation-knot-spacing S  of its rotations (default 0: the same)\n"
     "  --max-offset S       offsets searched in [-S, S] (default 0.05)\n"
     "  --offset S           compare with the ground truth's stamps moved by\n"
-    "                       -S (as vio_sim --gt-offset S; default 0)\n";
+    "                       -S, to see what correcting an offset would do\n"
+    "                       (default 0)\n";
 
 Args ParseArgs(int argc, char** argv) {
   Args args;
@@ -78,7 +79,8 @@ Args ParseArgs(int argc, char** argv) {
       !(args.rotation_knot_spacing_s >= 0.0) ||
       !std::isfinite(args.offset_s)) {
     throw std::invalid_argument(
-        "--knot-spacing and --max-offset expect seconds > 0");
+        "--knot-spacing and --max-offset expect seconds > 0, "
+        "--rotation-knot-spacing seconds >= 0");
   }
   return args;
 }
