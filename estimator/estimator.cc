@@ -485,25 +485,10 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
                                   const OutlierReport& outliers) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ThreadCpuSeconds();
-  const ReanchoredTracks policy = options_.landmarks.reanchored_tracks;
-  // Tracks that go on keep all their later sightings in the problem; only
-  // their sighting in the leaving frame is lost (with the frame).
-  const std::vector<int64_t> kept = policy == ReanchoredTracks::kDropLeaving
-                                        ? problem.ContinuingLandmarks()
-                                        : std::vector<int64_t>();
-  const MarginalizationProblem m =
-      problem.OldestFrameMarginalization(outliers, kept);
+  const MarginalizationProblem m = problem.OldestFrameMarginalization(outliers);
   const MarginalizationResult result = Marginalize(m);
   ++summary_.marginalizations;
   if (result.ok()) {
-    if (policy != ReanchoredTracks::kReuse) {
-      // Their sightings shaped the prior: never again in the problem.
-      for (int64_t id : problem.MarginalizedLandmarks(outliers, kept)) {
-        features_.MarkInPrior(id);
-        ++summary_.landmarks_marked_in_prior;
-      }
-    }
-    summary_.tracks_carried_on += static_cast<int64_t>(kept.size());
     prior_ = result.MakePrior();
     prior_blocks_ = result.kept_parameter_blocks;
     // The extrinsic and gap-bias priors were folded factors: now in prior_.

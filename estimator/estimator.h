@@ -114,12 +114,6 @@ struct EstimatorSummary {
   int64_t outlier_landmarks_removed = 0;  // most of their sightings bad
   int64_t outlier_sightings_removed = 0;  // single sightings, landmark kept
   int64_t landmarks_behind_removed = 0;   // inverse depth <= 0 after a solve
-  // At marginalisations (landmarks.reanchored_tracks): landmarks whose
-  // sightings went into the prior and are kept out of the problem since
-  // (skip_prior, drop_leaving), and tracks that went on with only their
-  // sighting in the leaving frame dropped (drop_leaving).
-  int64_t landmarks_marked_in_prior = 0;
-  int64_t tracks_carried_on = 0;
   int64_t marginalizations = 0;
   int64_t marginalization_failures = 0;  // prior replaced by a fresh one
   int64_t solver_failures = 0;           // Ceres reported failure

@@ -4,30 +4,6 @@
 #include <sstream>
 
 namespace vio {
-
-const char* ReanchoredTracksName(ReanchoredTracks r) {
-  switch (r) {
-    case ReanchoredTracks::kReuse:
-      return "reuse";
-    case ReanchoredTracks::kSkipPrior:
-      return "skip_prior";
-    case ReanchoredTracks::kDropLeaving:
-      return "drop_leaving";
-  }
-  return "?";
-}
-
-bool ParseReanchoredTracks(const std::string& name, ReanchoredTracks* r) {
-  for (ReanchoredTracks c :
-       {ReanchoredTracks::kReuse, ReanchoredTracks::kSkipPrior,
-        ReanchoredTracks::kDropLeaving}) {
-    if (name == ReanchoredTracksName(c)) {
-      *r = c;
-      return true;
-    }
-  }
-  return false;
-}
 namespace {
 
 // Collects the first violated rule; each rule names its field the way the

@@ -113,12 +113,6 @@ void FeatureManager::RemoveFrame(int64_t frame_id, const CameraPoseFn& T_w_c) {
   }
 }
 
-void FeatureManager::MarkInPrior(int64_t feature_id) {
-  const auto it = landmarks_.find(feature_id);
-  if (it == landmarks_.end()) return;
-  for (Sighting& s : it->second.sightings) s.in_prior = true;
-}
-
 void FeatureManager::RemoveSighting(int64_t feature_id, int64_t frame_id,
                                     int camera) {
   const auto it = landmarks_.find(feature_id);

@@ -32,10 +32,6 @@ struct Sighting {
   int camera = 0;
   Eigen::Vector2d xy = Eigen::Vector2d::Zero();        // normalised [-]
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // d xy / dt [1/s]
-  // Already in the marginalisation prior: its visual factor was marginalised
-  // with the landmark's old anchor, so it must not enter the problem again
-  // (FeatureManager::MarkInPrior).
-  bool in_prior = false;
 };
 
 struct Landmark {
@@ -106,12 +102,6 @@ class FeatureManager {
                                     const CameraPoseFn& T_w_c);
 
   void RemoveLandmark(int64_t feature_id) { landmarks_.erase(feature_id); }
-  // Marks every current sighting of the landmark as in the prior: called for
-  // the landmarks whose factors were marginalised with their anchor frame.
-  // When re-anchored they keep their depth and their later sightings, but
-  // the sightings that shaped the prior are not counted a second time; the
-  // new anchor's ray is taken as given.
-  void MarkInPrior(int64_t feature_id);
   // Removes one sighting (nothing when absent). When it was the anchor the
   // landmark is re-anchored untriangulated (its depth belonged to the
   // removed bearing); a landmark left without sightings is deleted.

@@ -123,26 +123,21 @@ void WindowProblem::AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
 }
 
 int WindowProblem::AddVisualFactors() {
-  // Candidates: triangulated, anchored in the window, seen again later by a
-  // sighting not yet in the prior. Ranked by the sightings they bring: the
-  // anchor and those not in the prior.
-  std::vector<std::pair<int, Landmark*>> candidates;
+  // Candidates: triangulated, anchored in the window, seen again later.
+  std::vector<Landmark*> candidates;
   for (auto& [id, l] : features_->landmarks()) {
     if (!l.triangulated || !l.HasAnchor()) continue;
-    const int anchor = l.AnchorIndex();
-    int fresh = 0;
-    for (size_t k = anchor + 1; k < l.sightings.size(); ++k) {
-      if (!l.sightings[k].in_prior) ++fresh;
-    }
-    if (fresh == 0) continue;
-    candidates.push_back({fresh + 1 + anchor, &l});
+    if (l.AnchorIndex() + 1 >= static_cast<int>(l.sightings.size())) continue;
+    candidates.push_back(&l);
   }
   std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
+                   [](const Landmark* a, const Landmark* b) {
+                     return a->sightings.size() > b->sightings.size();
+                   });
   if (static_cast<int>(candidates.size()) > settings_.max_landmarks) {
     candidates.resize(settings_.max_landmarks);
   }
-  for (const auto& [rank, l] : candidates) AddLandmark(l);
+  for (Landmark* l : candidates) AddLandmark(l);
   landmarks_used_ = static_cast<int>(candidates.size());
   return landmarks_used_;
 }
@@ -163,7 +158,6 @@ void WindowProblem::AddLandmark(Landmark* l) {
                                          : Eigen::Vector2d::Zero();
   for (size_t k = anchor + 1; k < l->sightings.size(); ++k) {
     const Sighting& s = l->sightings[k];
-    if (s.in_prior) continue;  // its information is in the prior already
     const double sqrt_info =
         settings_.visual.SqrtInformation(settings_.focal_px[s.camera]);
     Residual r;
@@ -384,44 +378,8 @@ OutlierReport WindowProblem::Outliers(double threshold_px) const {
   return report;
 }
 
-namespace {
-
-bool Contains(const std::vector<int64_t>& ids, int64_t id) {
-  return std::find(ids.begin(), ids.end(), id) != ids.end();
-}
-
-}  // namespace
-
-std::vector<int64_t> WindowProblem::MarginalizedLandmarks(
-    const OutlierReport& excluded, const std::vector<int64_t>& kept) const {
-  std::vector<int64_t> ids;
-  const int64_t oldest = window_->frames.front()->id;
-  for (const Residual& r : residuals_) {
-    if (r.feature_id >= 0 && r.anchor_frame == oldest &&
-        !excluded.Involves(r.feature_id) && !Contains(kept, r.feature_id) &&
-        (ids.empty() || ids.back() != r.feature_id)) {
-      ids.push_back(r.feature_id);
-    }
-  }
-  return ids;
-}
-
-std::vector<int64_t> WindowProblem::ContinuingLandmarks() const {
-  std::vector<int64_t> ids;
-  const int64_t oldest = window_->frames.front()->id;
-  const int64_t newest = window_->frames.back()->id;
-  for (const Residual& r : residuals_) {
-    if (r.feature_id >= 0 && r.anchor_frame == oldest &&
-        r.target_frame == newest &&
-        (ids.empty() || ids.back() != r.feature_id)) {
-      ids.push_back(r.feature_id);
-    }
-  }
-  return ids;
-}
-
 MarginalizationProblem WindowProblem::OldestFrameMarginalization(
-    const OutlierReport& excluded, const std::vector<int64_t>& kept) const {
+    const OutlierReport& excluded) const {
   MarginalizationProblem m;
   const WindowFrame& oldest = *window_->frames.front();
   std::set<const double*> touched;
@@ -431,8 +389,7 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
     const bool use = prior || r.imu_start_frame == oldest.id ||
                      r.link_start_frame == oldest.id ||
                      (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-                      !excluded.Involves(r.feature_id) &&
-                      !Contains(kept, r.feature_id));
+                      !excluded.Involves(r.feature_id));
     if (!use) continue;
     m.residual_blocks.push_back({r.cost, r.loss, r.blocks});
     touched.insert(r.blocks.begin(), r.blocks.end());
@@ -451,7 +408,7 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
   }
   for (const Residual& r : residuals_) {
     if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-        !excluded.Involves(r.feature_id) && !Contains(kept, r.feature_id) &&
+        !excluded.Involves(r.feature_id) &&
         (m.marginalized.empty() || m.marginalized.back() != r.rho)) {
       m.marginalized.push_back(r.rho);
     }

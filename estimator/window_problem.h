@@ -20,8 +20,6 @@
 //                   blocks pose_i, pose_j, T_b_c0, T_b_c1, rho
 //                   (TimedStereoTwoFrameReprojectionFactor, with t_d after
 //                   rho, when the time offset is estimated)
-// Sightings marked in_prior (their factor was marginalised with an earlier
-// anchor, feature_manager.h) are not used either.
 // Sightings older than the anchor (camera 1 only) are not used, so only the
 // landmarks anchored in a frame have residuals touching that frame: the
 // marginalisation of the oldest frame then removes exactly those landmarks,
@@ -119,21 +117,8 @@ class WindowProblem {
   // and every visual factor of the landmarks anchored in it; marginalised are
   // its pose and speed-bias blocks and those landmarks' inverse depths.
   // Landmarks with outliers (about to be removed) are left out.
-  // Landmarks in `kept` (feature ids) are left out too: their sighting in
-  // the oldest frame is dropped instead (ReanchoredTracks::kDropLeaving).
   MarginalizationProblem OldestFrameMarginalization(
-      const OutlierReport& excluded,
-      const std::vector<int64_t>& kept = {}) const;
-
-  // The landmarks in the problem anchored in the oldest frame and seen in the
-  // newest: tracks that go on.
-  std::vector<int64_t> ContinuingLandmarks() const;
-
-  // The landmarks (feature ids) whose visual factors and inverse depths
-  // OldestFrameMarginalization(excluded) marginalises.
-  std::vector<int64_t> MarginalizedLandmarks(
-      const OutlierReport& excluded,
-      const std::vector<int64_t>& kept = {}) const;
+      const OutlierReport& excluded) const;
 
   // The problem as a ceres::Problem on the window's blocks, as the Ceres
   // backend solves it (for estimator/pose_covariance.h).
