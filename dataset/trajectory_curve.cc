@@ -229,6 +229,12 @@ bool CurveFitOptions::Validate(std::string* message) const {
       return false;
     }
   }
+  if (!(std::isfinite(rotation_knot_spacing_s) &&
+        rotation_knot_spacing_s >= 0.0)) {
+    *message = "rotation_knot_spacing_s must be >= 0 (got " +
+               std::to_string(rotation_knot_spacing_s) + ")";
+    return false;
+  }
   if (max_iterations < 1) {
     *message = "max_iterations must be >= 1";
     return false;
@@ -240,7 +246,19 @@ TrajectoryCurve::TrajectoryCurve(const std::vector<StampedPose>& poses,
                                  const CurveFitOptions& options)
     : start_ns_(poses.empty() ? 0 : poses.front().t_ns),
       end_ns_(poses.empty() ? 0 : poses.back().t_ns),
-      spline_(Fit(poses, options, &report_)) {}
+      spline_(Fit(poses, options, &report_)) {
+  const double rotation_spacing = options.rotation_knot_spacing_s;
+  if (rotation_spacing > 0.0 && rotation_spacing != options.knot_spacing_s) {
+    CurveFitOptions rotation_options = options;
+    rotation_options.knot_spacing_s = rotation_spacing;
+    CurveFitReport rotation_report;
+    rotation_spline_.emplace(Fit(poses, rotation_options, &rotation_report));
+    report_.rotation_rms_rad = rotation_report.rotation_rms_rad;
+    report_.rotation_max_rad = rotation_report.rotation_max_rad;
+    report_.control_points += rotation_report.control_points;
+    report_.iterations = rotation_report.iterations;
+  }
+}
 
 SimState TrajectoryCurve::At(double t) const {
   const PoseSplineState x = spline_.Evaluate(t);
@@ -250,6 +268,11 @@ SimState TrajectoryCurve::At(double t) const {
   s.a_w = x.a;
   s.q_w_b = x.q;
   s.w_b = x.w;
+  if (rotation_spline_.has_value()) {
+    const PoseSplineState r = rotation_spline_->Evaluate(t);
+    s.q_w_b = r.q;
+    s.w_b = r.w;
+  }
   return s;
 }
 

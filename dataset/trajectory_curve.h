@@ -17,6 +17,7 @@
 // rotations interpolated (slerp) from the samples. Eigen only (sparse LDLT).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,14 +32,21 @@ struct CurveFitOptions {
   // 1 / (2 knot_spacing_s) Hz. 0.05 s keeps a MAV's manoeuvres (EuRoC's
   // ground truth has no content above a few Hz).
   double knot_spacing_s = 0.05;
+  // Knot spacing of the rotations [s]; 0: knot_spacing_s. The rotations and
+  // the positions are fitted apart (two splines evaluated together), so the
+  // attitude can follow faster motion than the positions: a ground truth
+  // whose attitude has content the gyroscope felt (EuRoC MH's, estimated
+  // with the IMU) and whose positions are noisy beyond a few Hz (twice
+  // differentiated, position noise becomes acceleration error).
+  double rotation_knot_spacing_s = 0.0;
   double position_sigma_m = 1e-3;    // ground-truth position noise [m]
   double rotation_sigma_rad = 1e-3;  // ground-truth attitude noise [rad]
   double acceleration_sigma = 50.0;  // smoothness prior [m/s^2]
   double angular_acceleration_sigma = 50.0;  // smoothness prior [rad/s^2]
   int max_iterations = 20;  // Gauss-Newton on the rotations [-]
 
-  // True when every value is finite and > 0 (max_iterations >= 1); otherwise
-  // false with a message naming the field.
+  // True when every value is finite and > 0 (rotation_knot_spacing_s >= 0,
+  // max_iterations >= 1); otherwise false with a message naming the field.
   bool Validate(std::string* message) const;
 };
 
@@ -70,13 +78,20 @@ class TrajectoryCurve : public TrajectorySource {
     return static_cast<double>(end_ns_ - start_ns_) * 1e-9;
   }
   const CurveFitReport& report() const { return report_; }
+  // The positions' spline (and the rotations', unless rotation_spline() is
+  // set).
   const PoseSpline& spline() const { return spline_; }
+  // The rotations' spline when their knot spacing differs, else null.
+  const PoseSpline* rotation_spline() const {
+    return rotation_spline_.has_value() ? &*rotation_spline_ : nullptr;
+  }
 
  private:
   int64_t start_ns_;
   int64_t end_ns_;
   CurveFitReport report_;  // before spline_: the fit fills it
   PoseSpline spline_;
+  std::optional<PoseSpline> rotation_spline_;
 };
 
 }  // namespace vio

@@ -119,6 +119,41 @@ TEST(TrajectoryCurve, PassesThroughEurocMh05GroundTruthWithinItsNoise) {
   EXPECT_LT(VelocityRms(curve, states), 0.05);
 }
 
+TEST(TrajectoryCurve, FitsRotationsWithTheirOwnKnotSpacing) {
+  // MH_05's attitude (EuRoC's estimate, with the IMU) has content that
+  // 0.05 s knots smooth; rotation knots 0.0125 s apart follow it while the
+  // positions keep their 0.05 s spline. 20 s of the flight (30 to 50 s in),
+  // to keep the test fast.
+  const std::vector<StampedState> all = GroundTruth("euroc_MH_05_imu_gt");
+  ASSERT_GT(all.size(), 10000u);
+  const std::vector<StampedState> states(all.begin() + 6000,
+                                         all.begin() + 10000);
+  CurveFitOptions options;
+  const TrajectoryCurve coarse(Poses(states), options);
+  options.rotation_knot_spacing_s = 0.0125;
+  const TrajectoryCurve fine(Poses(states), options);
+  ASSERT_NE(fine.rotation_spline(), nullptr);
+  EXPECT_EQ(coarse.rotation_spline(), nullptr);
+  EXPECT_LT(fine.report().rotation_rms_rad,
+            0.2 * coarse.report().rotation_rms_rad);
+  EXPECT_LT(fine.report().rotation_max_rad, 2e-3);
+  EXPECT_DOUBLE_EQ(fine.report().position_rms_m,
+                   coarse.report().position_rms_m);
+  for (const double t : {1.0, 7.3, 15.0}) {
+    const SimState a = coarse.At(t);
+    const SimState b = fine.At(t);
+    EXPECT_EQ(a.p_w_b, b.p_w_b);
+    EXPECT_EQ(a.a_w, b.a_w);
+    // The fine rotation is that of its own spline, evaluated at t.
+    const PoseSplineState r = fine.rotation_spline()->Evaluate(t);
+    EXPECT_EQ(b.w_b, r.w);
+    EXPECT_LT(Log(a.q_w_b.conjugate() * b.q_w_b).norm(), 0.02);
+  }
+  options.rotation_knot_spacing_s = -0.01;
+  EXPECT_THROW(TrajectoryCurve(Poses(states), options),
+               std::invalid_argument);
+}
+
 TEST(TrajectoryCurve, InterpolatesTheTwentyHertzV101GroundTruth) {
   // The whole V1_01 ground truth, 145 s at 20 Hz: one sample per knot.
   const std::vector<StampedState> states = GroundTruth("euroc_V1_01_first5s");

@@ -36,6 +36,8 @@ struct Args {
   std::string ground_truth;  // empty: the folder's own
   vio::FlightImu imu = vio::FlightImu::kSynthetic;
   double knot_spacing_s = vio::CurveFitOptions().knot_spacing_s;
+  double rotation_knot_spacing_s =
+      vio::CurveFitOptions().rotation_knot_spacing_s;
 };
 
 constexpr char kUsage[] =
@@ -73,7 +75,9 @@ constexpr char kUsage[] =
     "  --imu synthetic|recorded  synthetic: from the fitted curve with the\n"
     "                       preset's noise (default); recorded: the folder's\n"
     "                       mav0/imu0/data.csv passed through unchanged\n"
-    "  --knot-spacing S     of the fitted B-spline [s] (default 0.05)\n";
+    "  --knot-spacing S     of the fitted B-spline [s] (default 0.05)\n"
+    "  --rotation-knot-spacing S  of its rotations, fitted apart [s]\n"
+    "                       (default 0: the same as --knot-spacing)\n";
 
 Args ParseArgs(int argc, char** argv) {
   Args args;
@@ -117,6 +121,12 @@ Args ParseArgs(int argc, char** argv) {
         throw std::invalid_argument(
             "--knot-spacing expects seconds > 0 (got '" + text + "')");
       }
+    } else if (flag == "--rotation-knot-spacing") {
+      args.rotation_knot_spacing_s = line.Number<double>();
+      if (!(args.rotation_knot_spacing_s >= 0.0)) {
+        throw std::invalid_argument(
+            "--rotation-knot-spacing expects seconds >= 0");
+      }
     } else if (flag == "--help" || flag == "-h") {
       args.help = true;
     } else {
@@ -159,6 +169,7 @@ vio::Simulation SimulateFlightToFolder(
   vio::FlightOptions options;
   options.imu = args.imu;
   options.curve.knot_spacing_s = args.knot_spacing_s;
+  options.curve.rotation_knot_spacing_s = args.rotation_knot_spacing_s;
   const vio::FlightSimulation f = vio::SimulateFlight(preset, options, flight);
   vio::WriteSimulationFolder(f.simulation, args.out, folder);
   const vio::CurveFitReport& c = f.curve;
@@ -167,9 +178,14 @@ vio::Simulation SimulateFlightToFolder(
               flight.ground_truth_path.c_str(), flight.ground_truth.size(),
               flight.has_biases ? ", with biases" : "");
   std::printf(
-      "curve: %d control points every %.3f s, through %d poses: position "
-      "rms %.2f mm max %.1f mm, rotation rms %.3f deg max %.2f deg\n",
-      c.control_points, options.curve.knot_spacing_s, c.samples,
+      "curve: %d control points every %.3f s (rotations every %.4f s), "
+      "through %d poses: position rms %.2f mm max %.1f mm, rotation rms "
+      "%.3f deg max %.2f deg\n",
+      c.control_points, options.curve.knot_spacing_s,
+      options.curve.rotation_knot_spacing_s > 0.0
+          ? options.curve.rotation_knot_spacing_s
+          : options.curve.knot_spacing_s,
+      c.samples,
       1e3 * c.position_rms_m, 1e3 * c.position_max_m,
       c.rotation_rms_rad * 180.0 / M_PI, c.rotation_max_rad * 180.0 / M_PI);
   std::printf("path length %.1f m\n", f.path_length_m);
