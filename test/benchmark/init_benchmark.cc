@@ -10,7 +10,9 @@
 //     true world z seen from the newest frame [deg],
 //   - the gyroscope-bias error |b_g - b_g true| at the newest frame [rad/s],
 // with the share of starts within the target time, and the same scale error
-// for the linear alignment alone (before the joint adjustment). With --ate
+// for the linear alignment alone (before the joint adjustment); --verbose
+// also prints per trial the scale's relative std the joint adjustment
+// claims (estimator/scale_uncertainty.h). With --ate
 // it also replays whole sequences in motion and from rest (the same motion
 // after a 2 s still start) and prints both ATEs.
 //
@@ -107,6 +109,7 @@ double Spread(const std::vector<Eigen::Vector3d>& p) {
   return std::sqrt(s / p.size());
 }
 
+
 struct Trial {
   bool started = false;
   double time_s = 0.0;
@@ -114,6 +117,7 @@ struct Trial {
   double alignment_scale_error = 0.0;  // the linear alignment's
   double gravity_deg = 0.0;
   double gyro_bias = 0.0;
+  double scale_sigma = -1.0;  // predicted by the joint adjustment
   InitMethod method = InitMethod::kAuto;
   std::string failures;
 };
@@ -163,6 +167,7 @@ Trial RunTrial(const SimulatorOptions& sim_options) {
   t.gravity_deg =
       std::atan2(z_est.cross(z_true).norm(), z_est.dot(z_true)) * 180.0 / M_PI;
   t.gyro_bias = (newest.b_g - gt.b_g).norm();
+  t.scale_sigma = start.diagnostics.refined_scale_sigma;
   if (!summary.init_attempts.empty()) {
     t.failures = DescribeInitFailures(summary.init_attempts);
   }
@@ -189,9 +194,10 @@ void StartFigures(const std::string& preset, const Args& args) {
       if (t.started) {
         std::printf(
             " (%s) after %.2f s, scale %+.2f %% (alignment %+.2f %%), "
-            "gravity %.3f deg, b_g %.5f",
+            "gravity %.3f deg, b_g %.5f, predicted scale sigma %.2f %%",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
-            100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias);
+            100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
+            100 * t.scale_sigma);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }
