@@ -17,7 +17,7 @@
 // after a 2 s still start) and prints both ATEs.
 //
 //   init_benchmark [--preset NAME]... [--seeds N] [--seconds S] [--ate]
-//                  [--verbose]
+//                  [--verbose] [--long-window S] [--max-scale-sigma X]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
@@ -44,7 +44,21 @@ struct Args {
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
   bool verbose = false;
+  // init.mono.long_window_s and max_refined_scale_uncertainty (< 0: the
+  // defaults), to measure the wait for the scale.
+  double long_window_s = -1.0;
+  double max_scale_sigma = -1.0;
 };
+
+EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
+                           const Args& args) {
+  EstimatorOptions o = testing::OptionsFor(simulation);
+  if (args.long_window_s > 0.0) o.init.mono.long_window_s = args.long_window_s;
+  if (args.max_scale_sigma > 0.0) {
+    o.init.mono.max_refined_scale_uncertainty = args.max_scale_sigma;
+  }
+  return o;
+}
 
 Args Parse(int argc, char** argv) {
   Args a;
@@ -62,6 +76,10 @@ Args Parse(int argc, char** argv) {
       a.seconds = std::stod(value());
     } else if (s == "--ate") {
       a.ate = true;
+    } else if (s == "--long-window") {
+      a.long_window_s = std::stod(value());
+    } else if (s == "--max-scale-sigma") {
+      a.max_scale_sigma = std::stod(value());
     } else if (s == "--verbose") {
       a.verbose = true;
     } else {
@@ -122,10 +140,10 @@ struct Trial {
   std::string failures;
 };
 
-Trial RunTrial(const SimulatorOptions& sim_options) {
+Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   const Simulation sim = Simulate(sim_options);
   const testing::PreparedSimulation prepared = testing::Prepare(sim);
-  const EstimatorOptions options = testing::OptionsFor(sim_options);
+  const EstimatorOptions options = OptionsOf(sim_options, args);
   Estimator estimator(options, VisualFactorOptions(), sim_options.imu.noise,
                       PreintegrationOptions(), prepared.cameras);
   // Feed until the first start.
@@ -187,7 +205,7 @@ void StartFigures(const std::string& preset, const Args& args) {
     o.motion.start_phase_s =
         base.motion.start_phase_s + k * base.motion.lap_period_s / args.seeds;
     o.duration_s = args.seconds;
-    const Trial t = RunTrial(o);
+    const Trial t = RunTrial(o, args);
     if (args.verbose) {
       std::printf("  seed %u phase %.2f s: %s", o.seed, o.motion.start_phase_s,
                   t.started ? "started" : "no start");
@@ -233,13 +251,13 @@ void AteFigures(const std::string& preset, const Args& args) {
     o.motion.start_phase_s =
         base.motion.start_phase_s + k * base.motion.lap_period_s / runs;
     const testing::SimReplay a =
-        testing::ReplaySimulation(Simulate(o), testing::OptionsFor(o));
+        testing::ReplaySimulation(Simulate(o), OptionsOf(o, args));
     // The same motion from rest: a 2 s still start blending into it.
     SimulatorOptions r = o;
     r.motion.still_duration_s = 2.0;
     r.motion.blend_duration_s = 2.0;
     const testing::SimReplay b =
-        testing::ReplaySimulation(Simulate(r), testing::OptionsFor(r));
+        testing::ReplaySimulation(Simulate(r), OptionsOf(r, args));
     moving.Add(a.ate_rmse_m);
     rest.Add(b.ate_rmse_m);
     std::printf(
