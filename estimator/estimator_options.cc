@@ -1,55 +1,13 @@
 #include "estimator/estimator_options.h"
 
 #include <cmath>
-#include <sstream>
+
+#include "estimator/option_rules.h"
 
 namespace vio {
-namespace {
-
-// Collects the first violated rule; each rule names its field the way the
-// YAML key reads (relative to the `estimator:` block).
-class Checker {
- public:
-  void Positive(const char* name, double value) {
-    Require(std::isfinite(value) && value > 0.0, name, value, "must be > 0");
-  }
-  void NonNegative(const char* name, double value) {
-    Require(std::isfinite(value) && value >= 0.0, name, value, "must be >= 0");
-  }
-  void AtLeast(const char* name, double value, double low) {
-    std::ostringstream rule;
-    rule << "must be >= " << low;
-    Require(std::isfinite(value) && value >= low, name, value, rule.str());
-  }
-  void Finite(const char* name, double value) {
-    Require(std::isfinite(value), name, value, "must be finite");
-  }
-  void Require(bool ok, const char* name, double value,
-               const std::string& rule) {
-    if (ok || !message_.empty()) return;
-    std::ostringstream out;
-    out << name << " " << rule << " (got " << value << ")";
-    message_ = out.str();
-  }
-  // A sub-struct's own Validate() result, its message prefixed.
-  void Nested(const char* prefix, bool ok, const std::string& message) {
-    if (ok || !message_.empty()) return;
-    message_ = prefix + message;
-  }
-  bool Done(std::string* message) const {
-    if (message_.empty()) return true;
-    *message = message_;
-    return false;
-  }
-
- private:
-  std::string message_;
-};
-
-}  // namespace
 
 bool EstimatorOptions::Validate(std::string* message) const {
-  Checker c;
+  OptionRules c;
   c.AtLeast("window_size", window_size, 2);
   c.Positive("gravity_magnitude", gravity_magnitude);
   c.Finite("initial_time_offset_s", initial_time_offset_s);

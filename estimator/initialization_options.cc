@@ -1,43 +1,10 @@
 #include "estimator/initialization_options.h"
 
 #include <cmath>
-#include <sstream>
+
+#include "estimator/option_rules.h"
 
 namespace vio {
-namespace {
-
-// Collects the first violated rule, named as its YAML key reads.
-class Rules {
- public:
-  void Positive(const char* name, double value) {
-    Require(std::isfinite(value) && value > 0.0, name, value, "must be > 0");
-  }
-  void NonNegative(const char* name, double value) {
-    Require(std::isfinite(value) && value >= 0.0, name, value, "must be >= 0");
-  }
-  void AtLeast(const char* name, double value, double low) {
-    std::ostringstream rule;
-    rule << "must be >= " << low;
-    Require(std::isfinite(value) && value >= low, name, value, rule.str());
-  }
-  void Require(bool ok, const char* name, double value,
-               const std::string& rule) {
-    if (ok || !message_.empty()) return;
-    std::ostringstream out;
-    out << name << " " << rule << " (got " << value << ")";
-    message_ = out.str();
-  }
-  bool Done(std::string* message) const {
-    if (message_.empty()) return true;
-    *message = message_;
-    return false;
-  }
-
- private:
-  std::string message_;
-};
-
-}  // namespace
 
 const char* InitMethodName(InitMethod method) {
   switch (method) {
@@ -70,7 +37,7 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
     *message = "init.method stereo needs use_stereo: true";
     return false;
   }
-  Rules r;
+  OptionRules r;
   r.Positive("init.mono.window_s", mono.window_s);
   r.Require(mono.long_window_s >= mono.window_s, "init.mono.long_window_s",
             mono.long_window_s, "must be >= init.mono.window_s");
@@ -109,7 +76,7 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
 }
 
 bool ZeroVelocityOptions::Validate(std::string* message) const {
-  Rules r;
+  OptionRules r;
   r.Positive("zero_velocity.imu_window_s", imu_window_s);
   r.Require(
       std::isfinite(block_s) && block_s > 0.0 && block_s <= 0.5 * imu_window_s,

@@ -10,6 +10,27 @@ Eigen::Vector2d Shifted(const TimedObservation& obs, double t_d) {
   return obs.xy - (t_d - obs.t_d_at_stamp) * obs.velocity;
 }
 
+// t_d moves both observations: d f_i / d t_d = (-v_i, 0) through the chain,
+// and d xy_j(t_d) / d t_d = -v_j enters r = sqrt_info (pi(h_c) - xy_j) with a
+// minus sign:
+//   d r / d t_d = -d_r_d_h (d h_c / d f_i)[:, 0:2] v_i + sqrt_info v_j.
+// Zero, as every Jacobian of the factor, when the residual is inactive
+// (ProjectResidual: the point behind or at the centre of the camera).
+void WriteTimeOffsetJacobian(const ProjectedResidual& p,
+                             const InverseDepthChain& chain,
+                             const TimedObservation& obs_i,
+                             const TimedObservation& obs_j, double sqrt_info,
+                             double* jacobian) {
+  if (jacobian == nullptr) return;
+  Eigen::Map<Eigen::Vector2d> d_r_d_td(jacobian);
+  d_r_d_td.setZero();
+  if (p.active) {
+    d_r_d_td =
+        -p.d_r_d_h * chain.d_h_d_bearing().leftCols<2>() * obs_i.velocity +
+        sqrt_info * obs_j.velocity;
+  }
+}
+
 }  // namespace
 
 TimedReprojectionFactor::TimedReprojectionFactor(const TimedObservation& obs_i,
@@ -52,18 +73,8 @@ bool TimedReprojectionFactor::Compute(double const* const* parameters,
        ChainBlock::kInverseDepth},
       parameters, jacobians,
       tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
-  if (jacobians[kTimeOffset] != nullptr) {
-    // t_d moves both observations: d f_i / d t_d = (-v_i, 0), and
-    // d xy_j(t_d) / d t_d = -v_j enters r with a minus sign:
-    //   d r / d t_d = d_r_d_h (d h_c / d f_i) (-v_i, 0) + sqrt_info v_j.
-    Eigen::Map<Eigen::Vector2d> d_r_d_td(jacobians[kTimeOffset]);
-    d_r_d_td.setZero();
-    if (p.active) {
-      d_r_d_td =
-          -p.d_r_d_h * chain.d_h_d_bearing().leftCols<2>() * obs_i_.velocity +
-          sqrt_info_ * obs_j_.velocity;
-    }
-  }
+  WriteTimeOffsetJacobian(p, chain, obs_i_, obs_j_, sqrt_info_,
+                          jacobians[kTimeOffset]);
   return true;
 }
 
@@ -109,18 +120,8 @@ bool TimedStereoTwoFrameReprojectionFactor::Compute(
        ChainBlock::kTargetExtrinsic, ChainBlock::kInverseDepth},
       parameters, jacobians,
       tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
-  if (jacobians[kTimeOffset] != nullptr) {
-    // As in TimedReprojectionFactor: d f_i / d t_d = (-v_i, 0) through the
-    // chain, and -d xy_j(t_d) / d t_d = v_j directly:
-    //   d r / d t_d = -d_r_d_h (d h_c / d f_i)[:, 0:2] v_i + sqrt_info v_j.
-    Eigen::Map<Eigen::Vector2d> d_r_d_td(jacobians[kTimeOffset]);
-    d_r_d_td.setZero();
-    if (p.active) {
-      d_r_d_td =
-          -p.d_r_d_h * chain.d_h_d_bearing().leftCols<2>() * obs_i_.velocity +
-          sqrt_info_ * obs_j_.velocity;
-    }
-  }
+  WriteTimeOffsetJacobian(p, chain, obs_i_, obs_j_, sqrt_info_,
+                          jacobians[kTimeOffset]);
   return true;
 }
 

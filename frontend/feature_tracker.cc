@@ -29,10 +29,15 @@ int CountZeros(const std::vector<uchar>& flags) {
 std::vector<cv::Mat> BuildKltPyramid(const cv::Mat& image,
                                      const KltOptions& klt) {
   std::vector<cv::Mat> pyramid;
-  cv::buildOpticalFlowPyramid(image, pyramid,
+  BuildKltPyramid(image, klt, &pyramid);
+  return pyramid;
+}
+
+void BuildKltPyramid(const cv::Mat& image, const KltOptions& klt,
+                     std::vector<cv::Mat>* pyramid) {
+  cv::buildOpticalFlowPyramid(image, *pyramid,
                               cv::Size(klt.window_px, klt.window_px),
                               klt.pyramid_levels, true);
-  return pyramid;
 }
 
 void TrackKlt(cv::InputArray from, cv::InputArray to, const KltOptions& klt,
@@ -147,11 +152,13 @@ std::vector<FeatureObservation> FeatureTracker::Track(const cv::Mat& image) {
   }
   stats_ = TrackerStats();
   const cv::Mat current = Preprocess(image);
-  std::vector<cv::Mat> pyramid = BuildKltPyramid(current, options_.klt);
-  if (!pyramid_.empty()) TrackFromPrevious(current, pyramid);
+  // Into the buffers of the pyramid before the previous one: the same size
+  // every frame, so no allocation (and no page faults) after the second.
+  BuildKltPyramid(current, options_.klt, &spare_pyramid_);
+  if (!pyramid_.empty()) TrackFromPrevious(current, spare_pyramid_);
   Refill(current);
   image_ = current;
-  pyramid_ = std::move(pyramid);
+  std::swap(pyramid_, spare_pyramid_);
 
   std::vector<FeatureObservation> observations(points_.size());
   for (size_t i = 0; i < points_.size(); ++i) {
@@ -274,9 +281,8 @@ void FeatureTracker::Refill(const cv::Mat& image) {
   }
   const int wanted = options_.max_features - static_cast<int>(points.size());
   if (wanted > 0) {
-    std::vector<cv::Point2f> corners;
-    cv::goodFeaturesToTrack(image, corners, wanted, options_.corner_quality,
-                            options_.min_distance_px, mask);
+    const std::vector<cv::Point2f> corners = detector_.Detect(
+        image, mask, wanted, options_.corner_quality, options_.min_distance_px);
     for (const cv::Point2f& corner : corners) {
       if (!InsideBorder(corner)) continue;
       points.push_back(corner);

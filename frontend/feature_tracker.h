@@ -12,8 +12,8 @@
 //      against the previous frame and against the frame
 //      fundamental_baseline_frames back,
 //   5. a minimum-distance mask around surviving tracks (older tracks win), and
-//      new Shi-Tomasi corners (cv::goodFeaturesToTrack) to refill the frame to
-//      max_features.
+//      new Shi-Tomasi corners in its gaps (frontend/corner_detector.h, the
+//      rule of cv::goodFeaturesToTrack) to refill the frame to max_features.
 // Every track has a feature id that is unique and stays the same for as long
 // as the track lives. The tracker emits pixels only (feature_id, camera, uv);
 // frontend/observation_builder fills the undistorted xy and the velocity.
@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "frontend/anchor_refiner.h"
+#include "frontend/corner_detector.h"
 #include "frontend/frontend_options.h"
 #include "geometry/camera_model.h"
 #include "geometry/feature_observation.h"
@@ -91,8 +92,9 @@ class FeatureTracker {
   cv::Ptr<cv::CLAHE> clahe_;
 
   cv::Mat image_;
-  std::vector<cv::Mat> pyramid_;     // of image_, reused as the previous one
-  std::vector<cv::Point2f> points_;  // current tracks [px]
+  std::vector<cv::Mat> pyramid_;        // of image_, reused as the previous one
+  std::vector<cv::Mat> spare_pyramid_;  // buffers for the next one
+  std::vector<cv::Point2f> points_;     // current tracks [px]
   std::vector<int64_t> ids_;
   std::vector<int> ages_;  // frames each track has lived
   int64_t next_id_ = 0;
@@ -101,6 +103,7 @@ class FeatureTracker {
   // oldest first.
   std::deque<std::unordered_map<int64_t, cv::Point2f>> history_;
   cv::Mat image_float_;  // the current image as 32-bit float, reused
+  CornerDetector detector_;
   TrackerStats stats_;
 };
 
@@ -108,6 +111,10 @@ class FeatureTracker {
 // derivatives), shared by tracking and stereo matching.
 std::vector<cv::Mat> BuildKltPyramid(const cv::Mat& image,
                                      const KltOptions& klt);
+// The same into *pyramid, reusing its buffers when they have the sizes
+// needed.
+void BuildKltPyramid(const cv::Mat& image, const KltOptions& klt,
+                     std::vector<cv::Mat>* pyramid);
 
 // Lucas-Kanade from `from` into `to` (pyramids or images) for `points`,
 // starting at `guess` when it is non-empty. Sets `tracked` to the result and

@@ -26,26 +26,51 @@ ImageFrontend::ImageFrontend(const CameraModel& cam0, const CameraModel* cam1,
     }
     matcher_ =
         std::make_unique<StereoMatcher>(cam0, *cam1, options.stereo_matcher);
+    if (options.tracker.clahe) {
+      right_clahe_ = cv::createCLAHE(
+          options.tracker.clahe_clip_limit,
+          cv::Size(options.tracker.clahe_tiles, options.tracker.clahe_tiles));
+    }
   }
+}
+
+TrackedFrame ImageFrontend::TrackLeft(int64_t t_ns, const cv::Mat& left) {
+  TrackedFrame tracked;
+  tracked.frame.t_ns = t_ns;
+  tracked.frame.observations = tracker_.Track(left);
+  tracked.stats.tracker = tracker_.stats();
+  // The left image must look to the matcher as the right one will: both
+  // prepared alike (the tracker's CLAHE here, the matcher's equalisation in
+  // MatchRight, off the tracking thread).
+  tracked.left = tracker_.image();
+  return tracked;
+}
+
+StereoImage ImageFrontend::PrepareRight(const cv::Mat& right) const {
+  if (!matcher_ || right.empty()) return StereoImage();
+  if (!right_clahe_) return matcher_->PrepareRight(right);
+  cv::Mat equalised;
+  right_clahe_->apply(right, equalised);
+  return matcher_->PrepareRight(equalised);
+}
+
+void ImageFrontend::MatchRight(const StereoImage& right,
+                               TrackedFrame* tracked) const {
+  if (!matcher_ || right.pyramid.empty()) return;
+  const std::vector<FeatureObservation> matches =
+      matcher_->Match(matcher_->PrepareLeft(tracked->left), right,
+                      tracked->frame.observations, &tracked->stats.stereo);
+  tracked->frame.observations.insert(tracked->frame.observations.end(),
+                                     matches.begin(), matches.end());
+  tracked->stats.stereo_matched = true;
 }
 
 FeatureFrame ImageFrontend::Process(int64_t t_ns, const cv::Mat& left,
                                     const cv::Mat& right) {
-  FeatureFrame frame;
-  frame.t_ns = t_ns;
-  frame.observations = tracker_.Track(left);
-  stats_ = FrontendStats();
-  stats_.tracker = tracker_.stats();
-  if (matcher_ && !right.empty()) {
-    // The right image must look like the left one did to the tracker.
-    const std::vector<FeatureObservation> matches =
-        matcher_->Match(tracker_.image(), tracker_.Preprocess(right),
-                        frame.observations, &stats_.stereo);
-    frame.observations.insert(frame.observations.end(), matches.begin(),
-                              matches.end());
-    stats_.stereo_matched = true;
-  }
-  return frame;
+  TrackedFrame tracked = TrackLeft(t_ns, left);
+  MatchRight(PrepareRight(right), &tracked);
+  stats_ = tracked.stats;
+  return std::move(tracked.frame);
 }
 
 }  // namespace vio

@@ -26,6 +26,13 @@ struct FrontendStats {
   bool stereo_matched = false;  // false in mono, or when the right was empty
 };
 
+// A frame between ImageFrontend's steps (TrackLeft, then MatchRight).
+struct TrackedFrame {
+  FeatureFrame frame;  // cam0 observations, then the cam1 matches
+  cv::Mat left;        // the left image as the tracker saw it (Preprocess)
+  FrontendStats stats;
+};
+
 class ImageFrontend {
  public:
   // `cam1` is required when options.stereo and ignored otherwise. Throws
@@ -40,12 +47,29 @@ class ImageFrontend {
   FeatureFrame Process(int64_t t_ns, const cv::Mat& left,
                        const cv::Mat& right = cv::Mat());
 
+  // Process in steps, for a caller that runs them on different threads
+  // (tools/image_tracks.h): TrackLeft carries the tracker's state from frame
+  // to frame and must see the frames in order; PrepareRight and MatchRight
+  // are const and may run on other threads meanwhile (MatchRight of frame k
+  // while TrackLeft takes frame k + 1). Process(t, left, right) is
+  // TrackLeft, PrepareRight, MatchRight, bit for bit.
+  TrackedFrame TrackLeft(int64_t t_ns, const cv::Mat& left);
+  // The right image prepared for matching; empty for an empty `right` or in
+  // mono.
+  StereoImage PrepareRight(const cv::Mat& right) const;
+  // Adds the matches of `tracked`'s cam0 features into the prepared right
+  // image (nothing when `right` is empty) and sets tracked->stats.
+  void MatchRight(const StereoImage& right, TrackedFrame* tracked) const;
+
   bool stereo() const { return matcher_ != nullptr; }
   const FrontendStats& stats() const { return stats_; }
 
  private:
   FeatureTracker tracker_;
   std::unique_ptr<StereoMatcher> matcher_;
+  // CLAHE for the right images (when tracker.clahe): cv::CLAHE keeps
+  // buffers, so the right image, prepared on its own thread, has its own.
+  cv::Ptr<cv::CLAHE> right_clahe_;
   FrontendStats stats_;
 };
 

@@ -72,28 +72,52 @@ bool StereoMatcher::TriangulateDepth(const Eigen::Vector2d& xy0,
   return true;
 }
 
+StereoImage StereoMatcher::Prepare(const cv::Mat& image) const {
+  StereoImage prepared;
+  if (options_.equalize) {
+    cv::Mat equalised;
+    cv::equalizeHist(image, equalised);
+    prepared.pyramid = BuildKltPyramid(equalised, options_.klt);
+  } else {
+    prepared.pyramid = BuildKltPyramid(image, options_.klt);
+  }
+  return prepared;
+}
+
+StereoImage StereoMatcher::PrepareLeft(const cv::Mat& image) const {
+  CheckImage(image, left_, "left");
+  return Prepare(image);
+}
+
+StereoImage StereoMatcher::PrepareRight(const cv::Mat& image) const {
+  CheckImage(image, right_, "right");
+  return Prepare(image);
+}
+
 std::vector<FeatureObservation> StereoMatcher::Match(
     const cv::Mat& left, const cv::Mat& right,
     const std::vector<FeatureObservation>& left_observations,
     StereoStats* stats) const {
-  CheckImage(left, left_, "left");
-  CheckImage(right, right_, "right");
+  const StereoImage prepared_left = PrepareLeft(left);
+  return Match(prepared_left, PrepareRight(right), left_observations, stats);
+}
+
+std::vector<FeatureObservation> StereoMatcher::Match(
+    const StereoImage& left, const StereoImage& right,
+    const std::vector<FeatureObservation>& left_observations,
+    StereoStats* stats) const {
   StereoStats counts;
   std::vector<FeatureObservation> matches;
   std::vector<cv::Point2f> uv0;
+  uv0.reserve(left_observations.size());
   for (const FeatureObservation& o : left_observations) {
     uv0.emplace_back(static_cast<float>(o.uv.x()),
                      static_cast<float>(o.uv.y()));
   }
-  cv::Mat left_matched = left, right_matched = right;
-  if (options_.equalize) {
-    cv::equalizeHist(left, left_matched);
-    cv::equalizeHist(right, right_matched);
-  }
   std::vector<cv::Point2f> uv1, back;
   std::vector<uchar> ok, ok_back;
-  TrackKlt(left_matched, right_matched, options_.klt, uv0, {}, &uv1, &ok);
-  TrackKlt(right_matched, left_matched, options_.klt, uv1, uv0, &back,
+  TrackKlt(left.pyramid, right.pyramid, options_.klt, uv0, {}, &uv1, &ok);
+  TrackKlt(right.pyramid, left.pyramid, options_.klt, uv1, uv0, &back,
            &ok_back);
 
   const double max_reverse2 = options_.max_reverse_px * options_.max_reverse_px;

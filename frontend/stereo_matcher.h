@@ -24,6 +24,15 @@
 
 namespace vio {
 
+// One image of the pair as the matcher reads it: equalised when
+// options.equalize, with its LK pyramid (image levels and their derivatives,
+// BuildKltPyramid). Built once per image and used by both directions of the
+// match (left -> right and the reverse check), which calcOpticalFlowPyrLK
+// would otherwise rebuild on every call; the match is the same bit for bit.
+struct StereoImage {
+  std::vector<cv::Mat> pyramid;
+};
+
 // What one StereoMatcher::Match call did with the left features it was given.
 struct StereoStats {
   int matched = 0;            // right observations emitted
@@ -50,6 +59,21 @@ class StereoMatcher {
       const std::vector<FeatureObservation>& left_observations,
       StereoStats* stats = nullptr) const;
 
+  // The same match on images prepared beforehand (PrepareLeft,
+  // PrepareRight), for a caller that prepares them on another thread or
+  // while the left features are being tracked.
+  std::vector<FeatureObservation> Match(
+      const StereoImage& left, const StereoImage& right,
+      const std::vector<FeatureObservation>& left_observations,
+      StereoStats* stats = nullptr) const;
+
+  // `image` as Match reads it (8-bit grey of the left / right camera's size,
+  // prepared as FeatureTracker::Preprocess does, else
+  // std::invalid_argument). Const and independent of each other: both may
+  // run on different threads at once.
+  StereoImage PrepareLeft(const cv::Mat& image) const;
+  StereoImage PrepareRight(const cv::Mat& image) const;
+
   // Distance [px, right image] of the right pixel uv1 to the epipolar line
   // of the left pixel uv0; +infinity when either does not undistort.
   double EpipolarErrorPx(const Eigen::Vector2d& uv0,
@@ -67,6 +91,7 @@ class StereoMatcher {
  private:
   void CheckImage(const cv::Mat& image, const CameraModel& camera,
                   const char* which) const;
+  StereoImage Prepare(const cv::Mat& image) const;
 
   CameraModel left_;
   CameraModel right_;

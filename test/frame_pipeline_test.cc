@@ -135,7 +135,8 @@ struct StereoReplay {
   std::vector<EstimatorOutput> Streamed(const PipelineOptions& pipeline,
                                         ImageTrackingSummary* summary) const {
     Estimator estimator = MakeEstimator();
-    EurocImageStream stream(seq, frontend, true);
+    // Pipelined as vio_replay: reading and tracking on their own threads.
+    EurocImageStream stream(seq, frontend, true, !pipeline.sequential);
     StreamingRunner runner(&estimator, &seq.data.imu);
     std::vector<EstimatorOutput> outputs;
     RunFramePipeline(
@@ -197,6 +198,51 @@ TEST(ImageReplay, PipelinedEqualsSequentialBitForBitOnRealStereo) {
   int initialised = 0;
   for (const EstimatorOutput& o : outputs) initialised += o.initialized;
   EXPECT_GE(initialised, 25);
+}
+
+// The threaded stream (reading, tracking, matching on three threads) gives
+// the frames of one thread bit for bit, with the same counts, and can be
+// dropped half way without hanging (the threads are blocked on full queues
+// then).
+TEST(EurocImageStream, ThreadedGivesTheFramesOfOneThreadBitForBit) {
+  StereoReplay replay;
+  replay.seq.data.cameras[0].images.resize(30);
+  EurocImageStream one(replay.seq, replay.frontend, true, false);
+  EurocImageStream threaded(replay.seq, replay.frontend, true, true);
+  FeatureFrame a, b;
+  int frames = 0;
+  while (one.Next(&a)) {
+    ASSERT_TRUE(threaded.Next(&b)) << "frame " << frames;
+    ASSERT_EQ(a.t_ns, b.t_ns);
+    ASSERT_EQ(a.observations.size(), b.observations.size());
+    for (size_t i = 0; i < a.observations.size(); ++i) {
+      const FeatureObservation& p = a.observations[i];
+      const FeatureObservation& q = b.observations[i];
+      EXPECT_EQ(p.feature_id, q.feature_id);
+      EXPECT_EQ(p.camera, q.camera);
+      EXPECT_EQ(p.uv, q.uv);
+      EXPECT_EQ(p.xy, q.xy);
+      EXPECT_EQ(p.velocity, q.velocity);
+    }
+    ++frames;
+  }
+  EXPECT_FALSE(threaded.Next(&b));
+  EXPECT_FALSE(threaded.Next(&b));  // and stays at the end
+  EXPECT_EQ(frames, 30);
+  for (int c = 0; c < 2; ++c) {
+    EXPECT_EQ(one.summary().cameras[c].used,
+              threaded.summary().cameras[c].used);
+    EXPECT_EQ(one.summary().cameras[c].missing,
+              threaded.summary().cameras[c].missing);
+    EXPECT_EQ(one.summary().cameras[c].unpaired,
+              threaded.summary().cameras[c].unpaired);
+  }
+  EXPECT_EQ(one.summary().observations[1], threaded.summary().observations[1]);
+  EXPECT_EQ(one.builder_summary().observations,
+            threaded.builder_summary().observations);
+
+  EurocImageStream dropped(replay.seq, replay.frontend, true, true);
+  ASSERT_TRUE(dropped.Next(&b));
 }
 
 }  // namespace

@@ -131,17 +131,22 @@ TEST(DescribeInputHandling, CountsPosesGapsAndResetsByCause) {
   ImuGap gap;
   gap.t_end_ns = 1;
   gap.reset = true;
-  s.imu_gaps = {gap, ImuGap()};
-  s.imu_gaps[1].t_end_ns = 1;
+  ImuGap bridged;
+  bridged.t_end_ns = 1;
+  bridged.frames_visual = 3;
+  ImuGap uncrossed;  // closed, but no frame was placed across it
+  uncrossed.t_end_ns = 1;
+  s.imu_gaps = {gap, bridged, uncrossed};
   s.reset_log = {{1, Failure::kImuGap},
                  {2, Failure::kFewLandmarks},
                  {3, Failure::kImuGap}};
   const std::string text = DescribeInputHandling(input, s, 142);
   EXPECT_THAT(text, HasSubstr("poses       142 of 161 frames (88.2 %); 11 "
                               "tracked on vision alone"));
-  EXPECT_THAT(text, HasSubstr("2 short (integrated across); 2 long: 1 bridged "
+  EXPECT_THAT(text, HasSubstr("2 short (integrated across); 3 long: 1 bridged "
                               "on vision, 1 ended in a restart, 0 left frames "
-                              "without a pose"));
+                              "without a pose, 1 crossed by no estimated "
+                              "frame"));
   EXPECT_THAT(text, HasSubstr("60 outside the image"));
   EXPECT_THAT(text, HasSubstr("resets by cause  IMU gap not bridged by vision "
                               "2, too few landmarks 1"));

@@ -2,13 +2,17 @@
 
 #include <chrono>
 #include <ctime>
+#include <exception>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "dataset/features_csv.h"
 #include "frontend/image_frontend.h"
+#include "tools/bounded_queue.h"
 
 namespace vio {
 namespace {
@@ -46,10 +50,32 @@ int64_t ImageTrackingSummary::skipped() const {
   return n;
 }
 
+// One frame between the steps. `counts` and `read_seconds` are what reading
+// it (and the bad images skipped before it) added; an `end` item carries
+// only the counts of the sequence's last images.
+struct EurocImageStream::Work {
+  bool end = false;
+  int64_t t_ns = 0;
+  cv::Mat left;
+  StereoImage right;
+  TrackedFrame tracked;
+  ImageCounts counts[2];
+  double read_seconds = 0.0;
+  double track_seconds = 0.0;
+  double track_cpu_seconds = 0.0;
+};
+
+struct EurocImageStream::Threads {
+  BoundedQueue<Work> read{kStageQueueFrames};
+  BoundedQueue<Work> tracked{kStageQueueFrames};
+  std::exception_ptr read_error, track_error;
+  std::thread reader, tracker;
+};
+
 EurocImageStream::EurocImageStream(const EurocSequence& sequence,
                                    const FrontendOptions& options,
-                                   bool with_observations)
-    : sequence_(sequence) {
+                                   bool with_observations, bool threaded)
+    : sequence_(sequence), threaded_(threaded) {
   const std::vector<EurocCamera>& cameras = sequence.data.cameras;
   const int needed = options.stereo ? 2 : 1;
   if (static_cast<int>(cameras.size()) < needed ||
@@ -81,56 +107,165 @@ EurocImageStream::EurocImageStream(const EurocSequence& sequence,
   summary_.cameras[0].missing = cameras[0].missing_images;
 }
 
-EurocImageStream::~EurocImageStream() = default;
+EurocImageStream::~EurocImageStream() {
+  if (!threads_) return;
+  // Unblocks both threads wherever they wait; they stop at their next push.
+  threads_->read.Close();
+  threads_->tracked.Close();
+  threads_->read.Clear();
+  threads_->tracked.Clear();
+  threads_->reader.join();
+  threads_->tracker.join();
+}
 
 const ObservationBuilderSummary& EurocImageStream::builder_summary() const {
   static const ObservationBuilderSummary kNone;
   return builder_ ? builder_->summary() : kNone;
 }
 
-bool EurocImageStream::Next(FeatureFrame* frame) {
+bool EurocImageStream::Read(Work* work) {
   const std::vector<ImageEntry>& images = sequence_.data.cameras[0].images;
-  ImageTrackingSummary* summary = &summary_;
   while (next_ < images.size()) {
     const ImageEntry& entry = images[next_++];
-    Clock::time_point start = Clock::now();
-    const cv::Mat left =
-        ReadImage(entry.path, sequence_.cameras[0], &summary->cameras[0]);
+    const Clock::time_point start = Clock::now();
+    cv::Mat left =
+        ReadImage(entry.path, sequence_.cameras[0], &work->counts[0]);
     cv::Mat right;
     auto it = right_by_stamp_.find(entry.t_ns);
     if (it != right_by_stamp_.end()) {
       if (!left.empty()) {
-        right = ReadImage(it->second->path, sequence_.cameras[1],
-                          &summary->cameras[1]);
+        right =
+            ReadImage(it->second->path, sequence_.cameras[1], &work->counts[1]);
       } else {
-        ++summary->cameras[1].unpaired;
+        ++work->counts[1].unpaired;
       }
       right_by_stamp_.erase(it);
     }
-    summary->read_seconds += SecondsSince(start);
+    work->read_seconds += SecondsSince(start);
     if (left.empty()) continue;
-    start = Clock::now();
-    const std::clock_t cpu_start = std::clock();
-    *frame = frontend_->Process(entry.t_ns, left, right);
-    summary->track_cpu_seconds +=
-        static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    summary->track_seconds += SecondsSince(start);
-    ++summary->frames;
-    if (frontend_->stats().stereo_matched) ++summary->stereo_frames;
-    for (const FeatureObservation& o : frame->observations) {
-      ++summary->observations[o.camera == 0 ? 0 : 1];
-    }
-    if (builder_) builder_->Process(frame);
     if (next_ == images.size()) {
-      summary->cameras[1].unpaired +=
-          static_cast<int64_t>(right_by_stamp_.size());
+      work->counts[1].unpaired += static_cast<int64_t>(right_by_stamp_.size());
       right_by_stamp_.clear();
     }
+    work->t_ns = entry.t_ns;
+    work->left = std::move(left);
+    // Preparing the right image is the frontend's work: timed as tracking.
+    const Clock::time_point prepare = Clock::now();
+    const std::clock_t cpu_start = std::clock();
+    work->right = frontend_->PrepareRight(right);
+    work->track_cpu_seconds +=
+        static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    work->track_seconds += SecondsSince(prepare);
     return true;
   }
-  summary->cameras[1].unpaired += static_cast<int64_t>(right_by_stamp_.size());
+  work->counts[1].unpaired += static_cast<int64_t>(right_by_stamp_.size());
   right_by_stamp_.clear();
+  work->end = true;
   return false;
+}
+
+void EurocImageStream::Track(Work* work) {
+  const Clock::time_point start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
+  work->tracked = frontend_->TrackLeft(work->t_ns, work->left);
+  work->left.release();
+  work->track_cpu_seconds +=
+      static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  work->track_seconds += SecondsSince(start);
+}
+
+void EurocImageStream::AddCounts(const Work& work) {
+  for (int c = 0; c < 2; ++c) {
+    ImageCounts& n = summary_.cameras[c];
+    n.used += work.counts[c].used;
+    n.missing += work.counts[c].missing;
+    n.unreadable += work.counts[c].unreadable;
+    n.wrong_size += work.counts[c].wrong_size;
+    n.unpaired += work.counts[c].unpaired;
+  }
+  summary_.read_seconds += work.read_seconds;
+  summary_.track_seconds += work.track_seconds;
+  summary_.track_cpu_seconds += work.track_cpu_seconds;
+}
+
+void EurocImageStream::Finish(Work* work, FeatureFrame* frame) {
+  const Clock::time_point start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
+  frontend_->MatchRight(work->right, &work->tracked);
+  work->right = StereoImage();
+  work->track_cpu_seconds +=
+      static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  work->track_seconds += SecondsSince(start);
+  AddCounts(*work);
+  *frame = std::move(work->tracked.frame);
+  ++summary_.frames;
+  if (work->tracked.stats.stereo_matched) ++summary_.stereo_frames;
+  for (const FeatureObservation& o : frame->observations) {
+    ++summary_.observations[o.camera == 0 ? 0 : 1];
+  }
+  if (builder_) builder_->Process(frame);
+}
+
+void EurocImageStream::StartThreads() {
+  threads_ = std::make_unique<Threads>();
+  Threads* t = threads_.get();
+  t->reader = std::thread([this, t] {
+    try {
+      for (;;) {
+        Work work;
+        const bool more = Read(&work);
+        if (!t->read.Push(std::move(work)) || !more) break;
+      }
+    } catch (...) {
+      t->read_error = std::current_exception();
+    }
+    t->read.Close();
+  });
+  t->tracker = std::thread([this, t] {
+    try {
+      while (std::optional<Work> work = t->read.Pop()) {
+        if (!work->end) Track(&*work);
+        if (!t->tracked.Push(std::move(*work))) break;
+      }
+    } catch (...) {
+      t->track_error = std::current_exception();
+    }
+    // Also unblocks the reader when tracking failed.
+    t->read.Close();
+    t->tracked.Close();
+  });
+}
+
+bool EurocImageStream::Next(FeatureFrame* frame) {
+  if (finished_) return false;
+  Work work;
+  if (!threaded_) {
+    if (!Read(&work)) {
+      AddCounts(work);
+      finished_ = true;
+      return false;
+    }
+    Track(&work);
+  } else {
+    if (!threads_) StartThreads();
+    std::optional<Work> next = threads_->tracked.Pop();
+    if (!next) {
+      // Closed without an end: a step failed. The later step's error first:
+      // it happened on an earlier frame.
+      finished_ = true;
+      if (threads_->track_error) std::rethrow_exception(threads_->track_error);
+      if (threads_->read_error) std::rethrow_exception(threads_->read_error);
+      return false;
+    }
+    work = std::move(*next);
+    if (work.end) {
+      AddCounts(work);
+      finished_ = true;
+      return false;
+    }
+  }
+  Finish(&work, frame);
+  return true;
 }
 
 std::vector<FeatureFrame> TrackEurocImages(const EurocSequence& sequence,

@@ -11,6 +11,7 @@
 // bad is dropped; a frame whose cam1 image is bad or absent is tracked on
 // cam0 alone.
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -51,16 +52,30 @@ struct ImageTrackingSummary {
 // for (vio_replay's pipeline): the same frames, in the same order, as
 // TrackEurocImages / ImageObservations. Throws std::invalid_argument on
 // construction as TrackEurocImages does.
+//
+// Each frame goes through three steps: read (decode both images, prepare
+// the right one for the stereo match), track (cam0, whose state carries from
+// frame to frame) and finish (the stereo match, the observation step). With
+// `threaded`, reading and tracking each run on their own thread, up to
+// kStageQueueFrames frames ahead of the next, and Next only finishes: every
+// step still sees the frames in order and computes the same values, so the
+// frames are bit for bit those of one thread. An exception in a step ends
+// the stream after the frames before it and is rethrown by Next.
 class EurocImageStream {
  public:
   // with_observations: also the observation step (ImageObservations);
   // otherwise the frames of TrackEurocImages. `sequence` must outlive this.
   EurocImageStream(const EurocSequence& sequence,
-                   const FrontendOptions& options, bool with_observations);
+                   const FrontendOptions& options, bool with_observations,
+                   bool threaded = false);
   ~EurocImageStream();
 
   // Reads and tracks the next good cam0 image into *frame; false at the end.
   bool Next(FeatureFrame* frame);
+
+  // How far reading may run ahead of tracking, and tracking ahead of Next,
+  // when threaded [frames].
+  static constexpr size_t kStageQueueFrames = 2;
 
   const ImageTrackingSummary& summary() const { return summary_; }
   const ObservationBuilderSummary& builder_summary() const;
@@ -74,6 +89,19 @@ class EurocImageStream {
   std::unique_ptr<ObservationBuilder> builder_;  // null: no observation step
   std::map<int64_t, const ImageEntry*> right_by_stamp_;
   size_t next_ = 0;  // the next cam0 image
+  bool finished_ = false;
+
+  struct Work;     // one frame between the steps
+  struct Threads;  // the reading and tracking threads and their queues
+  // The steps (see the class comment). Read returns false at the end, with
+  // the last counts in *work.
+  bool Read(Work* work);
+  void Track(Work* work);
+  void Finish(Work* work, FeatureFrame* frame);
+  void AddCounts(const Work& work);
+  void StartThreads();
+  const bool threaded_;
+  std::unique_ptr<Threads> threads_;
 };
 
 // Tracks the sequence's images (cam0, and cam1 when options.stereo). The

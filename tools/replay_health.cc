@@ -107,9 +107,14 @@ std::string DescribeInputHandling(const InputReport& input,
       static_cast<long long>(frames_with_pose),
       static_cast<long long>(s.frames), Percent(frames_with_pose, s.frames),
       static_cast<long long>(s.frames_visual_only));
-  int64_t bridged = 0, lost = 0, restarted = 0;
+  // Bridged means at least one frame across the gap was placed on vision;
+  // a gap no estimated frame crossed (before the start, say) is not.
+  int64_t bridged = 0, lost = 0, restarted = 0, uncrossed = 0;
   for (const ImuGap& gap : s.imu_gaps) {
-    ++(gap.reset ? restarted : gap.frames_lost > 0 ? lost : bridged);
+    ++(gap.reset              ? restarted
+       : gap.frames_lost > 0  ? lost
+       : gap.frames_visual > 0 ? bridged
+                               : uncrossed);
   }
   out << Format(
       "  imu input   %d line(s) dropped by the reader (%d repeated, %d "
@@ -122,10 +127,10 @@ std::string DescribeInputHandling(const InputReport& input,
   out << Format(
       "  imu gaps    %lld short (integrated across); %zu long: %lld bridged "
       "on vision, %lld ended in a restart, %lld left frames without a "
-      "pose\n",
+      "pose, %lld crossed by no estimated frame\n",
       static_cast<long long>(s.imu_short_gaps), s.imu_gaps.size(),
       static_cast<long long>(bridged), static_cast<long long>(restarted),
-      static_cast<long long>(lost));
+      static_cast<long long>(lost), static_cast<long long>(uncrossed));
   out << Format(
       "  observations removed: %lld outside the image, %lld not "
       "undistortable, %lld of an unknown camera\n",

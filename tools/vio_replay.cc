@@ -66,8 +66,9 @@ constexpr char kUsage[] =
     "  --strict       refuse an IMU file whose stamps repeat or go backwards\n"
     "                 (default: such lines are dropped, counted and warned)\n"
     "  --sequential   images: read and track each frame, then estimate it,\n"
-    "                 on one thread (default: the frontend runs on a second\n"
-    "                 thread, ahead of the estimator; same output)\n"
+    "                 on one thread (default: reading, cam0 tracking and\n"
+    "                 the stereo match each run on their own thread, ahead\n"
+    "                 of the estimator; same output)\n"
     "  --queue-frames N  images: how many tracked frames the frontend may\n"
     "                 be ahead of the estimator (default 8, >= 1)\n"
     "\n"
@@ -208,7 +209,8 @@ FrontendOptions ImageFrontendOptions(int cameras_used, const Config& config,
       f.tracker.min_distance_px, f.tracker.clahe ? "on" : "off",
       f.tracker.fundamental_check ? "on" : "off",
       pipeline.sequential ? "sequential (one thread)"
-                          : ("pipelined (frontend thread, queue of " +
+                          : ("pipelined (reading, tracking and matching "
+                             "threads, queue of " +
                              std::to_string(pipeline.queue_frames) + " frames)")
                                 .c_str());
   return f;
@@ -235,15 +237,17 @@ struct ImageReplay {
   double cpu_s = 0.0;   // process CPU over the same span [s]
 };
 
-// Reads, tracks and estimates the images frame by frame: the frontend on a
-// second thread ahead of the estimator, or both on this one (--sequential).
+// Reads, tracks and estimates the images frame by frame: reading, cam0
+// tracking and the stereo match on three threads ahead of the estimator
+// (EurocImageStream threaded, RunFramePipeline), or all on this one
+// (--sequential).
 // The estimator gets the same frames in the same order either way.
 ImageReplay ReplayImages(const EurocSequence& seq,
                          const FrontendOptions& frontend,
                          const PipelineOptions& pipeline, bool keep_tracks,
                          Estimator* estimator, ImageTrackingSummary* summary,
                          ObservationBuilderSummary* removed) {
-  EurocImageStream stream(seq, frontend, true);
+  EurocImageStream stream(seq, frontend, true, !pipeline.sequential);
   StreamingRunner runner(estimator, &seq.data.imu);
   const std::vector<FeatureFrame> expected = ExpectedImageFrames(seq);
   Progress progress(expected);
