@@ -74,6 +74,9 @@ void ReadInit(const YamlNode& n, InitOptions* o) {
   o->mono.bundle_iterations = m.Get<int>("bundle_iterations");
   o->mono.min_imu_excitation = m.Get<double>("min_imu_excitation");
   o->mono.max_scale_uncertainty = m.Get<double>("max_scale_uncertainty");
+  o->mono.long_window_s = m.Get<double>("long_window_s");
+  o->mono.max_refined_scale_uncertainty =
+      m.Get<double>("max_refined_scale_uncertainty");
   const YamlNode s = n.Child("stereo");
   o->stereo.window_s = s.Get<double>("window_s");
   o->stereo.min_span_s = s.Get<double>("min_span_s");

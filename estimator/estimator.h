@@ -200,7 +200,8 @@ class Estimator {
   // and false returned.
   bool StartFromInitialWindow(const InitialWindow& start, bool restart);
   bool BuildWindow(const InitialWindow& start);
-  InitFailure RefineStart(double* value, double* limit);
+  InitFailure RefineStart(InitMethod method, InitDiagnostics* diagnostics,
+                          double* value, double* limit);
   // After a reset while moving: feeds the in-motion initialiser and, when it
   // succeeds, replaces the restarted window (*out updated).
   void TryReinitialize(const FeatureFrame& frame, int64_t t_imu_ns,

@@ -21,6 +21,7 @@
 
 #include "estimator/estimator.h"
 #include "estimator/image_velocity.h"
+#include "estimator/scale_uncertainty.h"
 #include "estimator/state_prior.h"
 #include "estimator/static_initializer.h"
 #include "preintegration/imu_preintegration.h"
@@ -102,7 +103,7 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   InitFailure reason = InitFailure::kImuUnavailable;
   if (BuildWindow(start)) {
     const double path_before = PathLength(window_);
-    reason = RefineStart(&value, &limit);
+    reason = RefineStart(start.method, &record.diagnostics, &value, &limit);
     record.diagnostics.refine_scale_change =
         path_before > 0.0 ? PathLength(window_) / path_before - 1.0 : 0.0;
   }
@@ -193,7 +194,9 @@ bool Estimator::BuildWindow(const InitialWindow& start) {
   return true;
 }
 
-InitFailure Estimator::RefineStart(double* value, double* limit) {
+InitFailure Estimator::RefineStart(InitMethod method,
+                                   InitDiagnostics* diagnostics, double* value,
+                                   double* limit) {
   WindowProblem problem(&window_, &features_, ProblemSettings());
   problem.AddPrior(prior_.get(), prior_blocks_);
   if (extrinsic_prior_) {
@@ -233,6 +236,22 @@ InitFailure Estimator::RefineStart(double* value, double* limit) {
     *value = change;
     *limit = options_.init.max_refine_scale_change;
     return InitFailure::kRefinementScaleChange;
+  }
+  // How well the adjusted window determines its scale (the joint
+  // adjustment's covariance; estimator/scale_uncertainty.h).
+  std::vector<const double*> poses;
+  for (const auto& f : window_.frames) poses.push_back(f->pose.data());
+  diagnostics->refined_scale_sigma =
+      RelativeSpreadSigma(problem.CeresProblem().get(), poses);
+  const double max_sigma = options_.init.mono.max_refined_scale_uncertainty;
+  // 1 or more: no wait (the default; docs/initialisation.md has why).
+  if (method == InitMethod::kMono && diagnostics->long_window &&
+      max_sigma < 1.0 &&
+      !(diagnostics->refined_scale_sigma >= 0.0 &&
+        diagnostics->refined_scale_sigma <= max_sigma)) {
+    *value = diagnostics->refined_scale_sigma;
+    *limit = max_sigma;
+    return InitFailure::kScaleUncertain;
   }
   Slide(problem);
   return InitFailure::kNone;

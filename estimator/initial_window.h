@@ -45,6 +45,12 @@ struct InitDiagnostics {
   double gravity_error = 0.0;        // | |g_free| - g | [m/s^2]
   double imu_excitation = 0.0;       // std of dv / T [m/s^2]
   double refine_scale_change = 0.0;  // of the joint adjustment [-]
+  // Relative std of the adjusted window's scale, from the joint
+  // adjustment's covariance (estimator/scale_uncertainty.h); < 0: unknown.
+  double refined_scale_sigma = -1.0;
+  // mono: from the long window (init.mono.long_window_s), whose start waits
+  // for max_refined_scale_uncertainty; false: the fallback window.
+  bool long_window = false;
 };
 
 struct InitialWindow {

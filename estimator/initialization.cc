@@ -33,7 +33,7 @@ void Initialization::AddFrame(const FeatureFrame& frame, int64_t t_imu_ns) {
   frames_.push_back({frame.t_ns, t_imu_ns, frame.observations});
   // Keep what the larger window needs, with one frame of margin.
   const double keep_s =
-      std::max(options_.init.mono.window_s, options_.init.stereo.window_s);
+      std::max(options_.init.mono.long_window_s, options_.init.stereo.window_s);
   const int64_t keep_ns = std::llround(keep_s * 1e9);
   size_t drop = 0;
   while (drop + 2 < frames_.size() &&

@@ -39,6 +39,8 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
   }
   OptionRules r;
   r.Positive("init.mono.window_s", mono.window_s);
+  r.Require(mono.long_window_s >= mono.window_s, "init.mono.long_window_s",
+            mono.long_window_s, "must be >= init.mono.window_s");
   r.AtLeast("init.mono.max_frames", mono.max_frames, 3);
   r.Require(mono.max_frames <= window_size + 1, "init.mono.max_frames",
             mono.max_frames, "must be <= window_size + 1");
@@ -55,6 +57,8 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
   r.AtLeast("init.mono.bundle_iterations", mono.bundle_iterations, 1);
   r.NonNegative("init.mono.min_imu_excitation", mono.min_imu_excitation);
   r.Positive("init.mono.max_scale_uncertainty", mono.max_scale_uncertainty);
+  r.Positive("init.mono.max_refined_scale_uncertainty",
+             mono.max_refined_scale_uncertainty);
   r.Positive("init.stereo.window_s", stereo.window_s);
   r.Positive("init.stereo.min_span_s", stereo.min_span_s);
   r.Require(stereo.min_span_s <= stereo.window_s, "init.stereo.min_span_s",

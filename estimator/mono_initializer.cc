@@ -47,6 +47,26 @@ InitAttempt MonoInitializer::TryInitialize(
     const std::vector<BufferedFrame>& frames, const std::vector<ImuSample>& imu,
     InitialWindow* window) const {
   const MonoInitOptions& m = options_.init.mono;
+  const InitAttempt first = TryWindow(frames, imu, m.long_window_s, window);
+  window->diagnostics.long_window = true;
+  const bool sfm_failed = first.reason == InitFailure::kFewCorrespondences ||
+                          first.reason == InitFailure::kLowParallax ||
+                          first.reason == InitFailure::kFewInliers ||
+                          first.reason == InitFailure::kPnpFailed ||
+                          first.reason == InitFailure::kReprojectionError;
+  const std::vector<int> all = SelectFrames(frames, m.long_window_s, 2);
+  if (!sfm_failed || SpanSeconds(frames, all) <= m.window_s) return first;
+  // The features did not last over the long window: the fallback window.
+  const InitAttempt second = TryWindow(frames, imu, m.window_s, window);
+  window->diagnostics.long_window = false;
+  return second;
+}
+
+InitAttempt MonoInitializer::TryWindow(const std::vector<BufferedFrame>& frames,
+                                       const std::vector<ImuSample>& imu,
+                                       double window_s,
+                                       InitialWindow* window) const {
+  const MonoInitOptions& m = options_.init.mono;
   auto failed = [&](InitFailure reason, double value, double limit) {
     InitAttempt a;
     a.t_ns = frames.empty() ? 0 : frames.back().t_ns;
@@ -57,7 +77,7 @@ InitAttempt MonoInitializer::TryInitialize(
     return a;
   };
   const std::vector<int> selected =
-      SelectFrames(frames, m.window_s, m.max_frames);
+      SelectFrames(frames, window_s, m.max_frames);
   const double span = SpanSeconds(frames, selected);
   if (selected.size() < 3 || span < m.min_span_s) {
     return failed(InitFailure::kTooFewFrames, span, m.min_span_s);

@@ -33,11 +33,19 @@ class MonoInitializer {
   // samples `imu` (covering them). On success fills *window and returns an
   // attempt with reason kNone; otherwise the reason, value and limit (method
   // kMono, t_ns the newest frame's stamp). Never throws on bad data.
+  // The frames of init.mono.long_window_s are tried first (the start then
+  // waits in the estimator for a well-determined scale); when their
+  // structure from motion fails over more than window_s, those of window_s.
   InitAttempt TryInitialize(const std::vector<BufferedFrame>& frames,
                             const std::vector<ImuSample>& imu,
                             InitialWindow* window) const;
 
  private:
+  // The attempt over the frames of the last window_s seconds.
+  InitAttempt TryWindow(const std::vector<BufferedFrame>& frames,
+                        const std::vector<ImuSample>& imu, double window_s,
+                        InitialWindow* window) const;
+
   EstimatorOptions options_;
   Eigen::Isometry3d T_b_c_;
   double focal_px_;

@@ -82,6 +82,9 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.init.mono.min_imu_excitation, d.init.mono.min_imu_excitation);
   EXPECT_EQ(o.init.mono.max_scale_uncertainty,
             d.init.mono.max_scale_uncertainty);
+  EXPECT_EQ(o.init.mono.long_window_s, d.init.mono.long_window_s);
+  EXPECT_EQ(o.init.mono.max_refined_scale_uncertainty,
+            d.init.mono.max_refined_scale_uncertainty);
   EXPECT_EQ(o.init.stereo.window_s, d.init.stereo.window_s);
   EXPECT_EQ(o.init.stereo.min_span_s, d.init.stereo.min_span_s);
   EXPECT_EQ(o.init.stereo.min_stereo_points, d.init.stereo.min_stereo_points);

@@ -10,12 +10,14 @@
 //     true world z seen from the newest frame [deg],
 //   - the gyroscope-bias error |b_g - b_g true| at the newest frame [rad/s],
 // with the share of starts within the target time, and the same scale error
-// for the linear alignment alone (before the joint adjustment). With --ate
+// for the linear alignment alone (before the joint adjustment); --verbose
+// also prints per trial the scale's relative std the joint adjustment
+// claims (estimator/scale_uncertainty.h). With --ate
 // it also replays whole sequences in motion and from rest (the same motion
 // after a 2 s still start) and prints both ATEs.
 //
 //   init_benchmark [--preset NAME]... [--seeds N] [--seconds S] [--ate]
-//                  [--verbose]
+//                  [--verbose] [--long-window S] [--max-scale-sigma X]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
@@ -42,7 +44,21 @@ struct Args {
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
   bool verbose = false;
+  // init.mono.long_window_s and max_refined_scale_uncertainty (< 0: the
+  // defaults), to measure the wait for the scale.
+  double long_window_s = -1.0;
+  double max_scale_sigma = -1.0;
 };
+
+EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
+                           const Args& args) {
+  EstimatorOptions o = testing::OptionsFor(simulation);
+  if (args.long_window_s > 0.0) o.init.mono.long_window_s = args.long_window_s;
+  if (args.max_scale_sigma > 0.0) {
+    o.init.mono.max_refined_scale_uncertainty = args.max_scale_sigma;
+  }
+  return o;
+}
 
 Args Parse(int argc, char** argv) {
   Args a;
@@ -60,6 +76,10 @@ Args Parse(int argc, char** argv) {
       a.seconds = std::stod(value());
     } else if (s == "--ate") {
       a.ate = true;
+    } else if (s == "--long-window") {
+      a.long_window_s = std::stod(value());
+    } else if (s == "--max-scale-sigma") {
+      a.max_scale_sigma = std::stod(value());
     } else if (s == "--verbose") {
       a.verbose = true;
     } else {
@@ -107,6 +127,7 @@ double Spread(const std::vector<Eigen::Vector3d>& p) {
   return std::sqrt(s / p.size());
 }
 
+
 struct Trial {
   bool started = false;
   double time_s = 0.0;
@@ -114,14 +135,15 @@ struct Trial {
   double alignment_scale_error = 0.0;  // the linear alignment's
   double gravity_deg = 0.0;
   double gyro_bias = 0.0;
+  double scale_sigma = -1.0;  // predicted by the joint adjustment
   InitMethod method = InitMethod::kAuto;
   std::string failures;
 };
 
-Trial RunTrial(const SimulatorOptions& sim_options) {
+Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   const Simulation sim = Simulate(sim_options);
   const testing::PreparedSimulation prepared = testing::Prepare(sim);
-  const EstimatorOptions options = testing::OptionsFor(sim_options);
+  const EstimatorOptions options = OptionsOf(sim_options, args);
   Estimator estimator(options, VisualFactorOptions(), sim_options.imu.noise,
                       PreintegrationOptions(), prepared.cameras);
   // Feed until the first start.
@@ -163,6 +185,7 @@ Trial RunTrial(const SimulatorOptions& sim_options) {
   t.gravity_deg =
       std::atan2(z_est.cross(z_true).norm(), z_est.dot(z_true)) * 180.0 / M_PI;
   t.gyro_bias = (newest.b_g - gt.b_g).norm();
+  t.scale_sigma = start.diagnostics.refined_scale_sigma;
   if (!summary.init_attempts.empty()) {
     t.failures = DescribeInitFailures(summary.init_attempts);
   }
@@ -182,16 +205,17 @@ void StartFigures(const std::string& preset, const Args& args) {
     o.motion.start_phase_s =
         base.motion.start_phase_s + k * base.motion.lap_period_s / args.seeds;
     o.duration_s = args.seconds;
-    const Trial t = RunTrial(o);
+    const Trial t = RunTrial(o, args);
     if (args.verbose) {
       std::printf("  seed %u phase %.2f s: %s", o.seed, o.motion.start_phase_s,
                   t.started ? "started" : "no start");
       if (t.started) {
         std::printf(
             " (%s) after %.2f s, scale %+.2f %% (alignment %+.2f %%), "
-            "gravity %.3f deg, b_g %.5f",
+            "gravity %.3f deg, b_g %.5f, predicted scale sigma %.2f %%",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
-            100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias);
+            100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
+            100 * t.scale_sigma);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }
@@ -227,13 +251,13 @@ void AteFigures(const std::string& preset, const Args& args) {
     o.motion.start_phase_s =
         base.motion.start_phase_s + k * base.motion.lap_period_s / runs;
     const testing::SimReplay a =
-        testing::ReplaySimulation(Simulate(o), testing::OptionsFor(o));
+        testing::ReplaySimulation(Simulate(o), OptionsOf(o, args));
     // The same motion from rest: a 2 s still start blending into it.
     SimulatorOptions r = o;
     r.motion.still_duration_s = 2.0;
     r.motion.blend_duration_s = 2.0;
     const testing::SimReplay b =
-        testing::ReplaySimulation(Simulate(r), testing::OptionsFor(r));
+        testing::ReplaySimulation(Simulate(r), OptionsOf(r, args));
     moving.Add(a.ate_rmse_m);
     rest.Add(b.ate_rmse_m);
     std::printf(

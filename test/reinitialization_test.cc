@@ -1,0 +1,161 @@
+// Re-initialisation after a failure reset (init.reinitialize_after_reset,
+// docs/initialisation.md): one provoked reset in the middle of a mono run in
+// motion, replayed with the option off (the default: the window restarts
+// from the IMU prediction and keeps its landmarks) and on (the in-motion
+// initialiser runs again from the reset on and its window replaces the
+// restarted one, the running position and yaw kept). Each path must do what
+// it says, and the default must stay the better one on this reset, as the
+// docs claim with figures.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "config/simulator_config.h"
+#include "dataset/fault_injection.h"
+#include "dataset/simulator.h"
+#include "estimator/estimator.h"
+#include "test/testing/sim_replay.h"
+
+namespace vio {
+namespace {
+
+using testing::SimReplay;
+
+// The default preset (2 s still, then the ellipse), mono, 10 s.
+const Simulation& Sequence() {
+  static const Simulation* simulation = [] {
+    SimulatorOptions o = LoadSimulatorOptions(std::string(VIO_SOURCE_DIR) +
+                                              "/config/sim_default.yaml");
+    o.duration_s = 10.0;
+    return new Simulation(Simulate(o));
+  }();
+  return *simulation;
+}
+
+// One accelerometer value of 1e6 m/s^2 at 4.93 s with the range check off:
+// the state explodes and the pre-solve check resets the window while moving
+// (~1.5 m/s).
+SimReplay RunWithReset(bool reinitialize) {
+  EstimatorOptions options = testing::OptionsFor(Sequence().options);
+  options.imu_stream.range.accelerometer_range =
+      std::numeric_limits<double>::max();
+  options.init.reinitialize_after_reset = reinitialize;
+  ImuFault fault;
+  fault.kind = ImuFaultKind::kAccelValue;
+  fault.t_s = 4.93;
+  fault.count = 1;
+  fault.value = 1e6;
+  return testing::Replay(Sequence(), options,
+                         WithImuFault(Sequence().imu, fault),
+                         testing::Prepare(Sequence()).frames);
+}
+
+const SimReplay& Off() {
+  static const SimReplay* run = new SimReplay(RunWithReset(false));
+  return *run;
+}
+
+const SimReplay& On() {
+  static const SimReplay* run = new SimReplay(RunWithReset(true));
+  return *run;
+}
+
+const StampedState& TruthAt(int64_t t_ns) {
+  const auto& gt = Sequence().ground_truth;
+  const auto it = std::lower_bound(
+      gt.begin(), gt.end(), t_ns,
+      [](const StampedState& s, int64_t t) { return s.t_ns < t; });
+  return it == gt.end() ? gt.back() : *it;
+}
+
+// RMS spread of the window's positions about their centroid, estimated
+// against the truth's, minus 1.
+double ScaleError(const StartRecord& start) {
+  auto spread = [&](bool truth) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (const InitialFrame& f : start.window) {
+      c += truth ? TruthAt(f.t_imu_ns).p_w_b : f.p_w_b;
+    }
+    c /= static_cast<double>(start.window.size());
+    double s = 0.0;
+    for (const InitialFrame& f : start.window) {
+      s += ((truth ? TruthAt(f.t_imu_ns).p_w_b : f.p_w_b) - c).squaredNorm();
+    }
+    return std::sqrt(s / static_cast<double>(start.window.size()));
+  };
+  return spread(false) / spread(true) - 1.0;
+}
+
+void ExpectResetWhileMoving(const SimReplay& r) {
+  ASSERT_GE(r.summary.resets, 1);
+  EXPECT_EQ(r.summary.reset_log[0].reason, Failure::kUnsafeState);
+  ASSERT_FALSE(r.summary.starts.empty());
+  EXPECT_EQ(r.summary.starts.front().method, InitMethod::kStatic);
+  EXPECT_FALSE(r.summary.starts.front().restart);
+  // Moving at the reset: the case the option is for.
+  EXPECT_GT(TruthAt(r.summary.reset_log[0].t_ns).v_w.norm(), 0.5);
+  // No frame after the first start loses its pose to the reset.
+  EXPECT_EQ(r.summary.frames_processed + r.summary.frames_before_init,
+            r.summary.frames);
+  for (const EstimatorOutput& o : r.outputs) {
+    ASSERT_TRUE(o.p_w_b.allFinite() && o.v_w.allFinite()) << o.t_ns;
+  }
+}
+
+TEST(Reinitialization, OffTheResetOnlyRestartsFromThePrediction) {
+  const SimReplay& r = Off();
+  ExpectResetWhileMoving(r);
+  EXPECT_EQ(r.summary.reinitializations, 0);
+  EXPECT_EQ(r.summary.starts.size(), 1u);
+  // The restarted window keeps the map: the run stays near the truth
+  // (measured 0.19 m with the reset, 0.50 m re-initialised).
+  EXPECT_LT(r.ate_rmse_m, 0.3);
+}
+
+TEST(Reinitialization, OnTheInMotionStartReplacesTheRestartedWindow) {
+  const SimReplay& r = On();
+  ExpectResetWhileMoving(r);
+  ASSERT_GE(r.summary.reinitializations, 1);
+  // The second start is the re-initialisation: mono, in motion, after the
+  // reset, once the frames since it span init.mono.min_span_s.
+  ASSERT_GE(r.summary.starts.size(), 2u);
+  const StartRecord& again = r.summary.starts[1];
+  EXPECT_TRUE(again.restart);
+  EXPECT_EQ(again.method, InitMethod::kMono);
+  const double after_s =
+      1e-9 * static_cast<double>(again.t_ns - r.summary.reset_log[0].t_ns);
+  const EstimatorOptions defaults = testing::OptionsFor(Sequence().options);
+  EXPECT_GE(after_s, defaults.init.mono.min_span_s - 0.05);
+  EXPECT_LE(after_s, defaults.init.mono.long_window_s + 1.0);
+  // A window of the in-motion start (not the one-frame restart): frames
+  // spanning at least min_span_s, every one a keyframe of the new window.
+  ASSERT_GE(again.window.size(), 3u);
+  EXPECT_GE(1e-9 * static_cast<double>(again.window.back().t_ns -
+                                       again.window.front().t_ns),
+            defaults.init.mono.min_span_s - 0.05);
+  EXPECT_GE(again.window.front().t_ns, r.summary.reset_log[0].t_ns);
+  // Its scale against the truth, for the docs (measured +55 %, where the
+  // joint adjustment's own covariance claims 14 %).
+  std::printf("re-start at %.2f s after the reset: scale error %+.1f %% "
+              "(claimed sigma %.1f %%)\n",
+              after_s, 100.0 * ScaleError(again),
+              100.0 * again.diagnostics.refined_scale_sigma);
+  EXPECT_GT(r.ate_rmse_m, 0.0);
+}
+
+TEST(Reinitialization, TheDefaultRestartIsTheBetterOnThisReset) {
+  // Why init.reinitialize_after_reset is false (docs/initialisation.md): the
+  // restart keeps the map's scale and attitude, a fresh start re-estimates
+  // them from 1.5 s of motion. Should the re-initialisation ever become the
+  // better, the default has to be revisited.
+  std::printf("ATE with the reset: restart only %.4f m, re-initialised %.4f m\n",
+              Off().ate_rmse_m, On().ate_rmse_m);
+  EXPECT_LT(Off().ate_rmse_m, On().ate_rmse_m);
+}
+
+}  // namespace
+}  // namespace vio
