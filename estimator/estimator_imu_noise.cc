@@ -1,9 +1,9 @@
-// Estimator: the online IMU white-noise scale (estimator/imu_noise_adaptation.h).
-
-#include "estimator/estimator.h"
+// Estimator: the online IMU white-noise scale
+// (estimator/imu_noise_adaptation.h).
 
 #include <stdexcept>
 
+#include "estimator/estimator.h"
 #include "factors/imu_factor.h"
 
 namespace vio {
@@ -28,8 +28,7 @@ void Estimator::AdaptImuNoise() {
     } catch (const std::invalid_argument&) {
       return;  // a covariance that is not positive definite: no estimate
     }
-    if (!AddImuChi2(residual, j.imu->result(), j.imu->noise(), noise_,
-                    &sums)) {
+    if (!AddImuChi2(residual, j.imu->result(), j.imu->noise(), noise_, &sums)) {
       return;
     }
   }

@@ -26,13 +26,13 @@ bool Chi2(const Eigen::Matrix<double, N, 1>& r,
 
 bool ImuNoiseAdaptationOptions::Validate(std::string* message) const {
   if (!(smoothing > 0.0 && smoothing <= 1.0)) {
-    *message = "smoothing must be in (0, 1] (got " +
-               std::to_string(smoothing) + ")";
+    *message =
+        "smoothing must be in (0, 1] (got " + std::to_string(smoothing) + ")";
     return false;
   }
   if (!(min_scale > 0.0 && min_scale <= 1.0)) {
-    *message = "min_scale must be in (0, 1] (got " +
-               std::to_string(min_scale) + ")";
+    *message =
+        "min_scale must be in (0, 1] (got " + std::to_string(min_scale) + ")";
     return false;
   }
   if (!(max_scale >= 1.0 && std::isfinite(max_scale))) {
@@ -43,9 +43,9 @@ bool ImuNoiseAdaptationOptions::Validate(std::string* message) const {
   return true;
 }
 
-bool AddImuChi2(const Vector15d& residual, const PreintegratedImu& preintegrated,
-                const ImuNoise& used, const ImuNoise& configured,
-                ImuChi2Sums* sums) {
+bool AddImuChi2(const Vector15d& residual,
+                const PreintegratedImu& preintegrated, const ImuNoise& used,
+                const ImuNoise& configured, ImuChi2Sums* sums) {
   const Matrix15d& sigma = preintegrated.covariance;
   // Group A: the dp and dv rows with their cross-covariance.
   Eigen::Matrix<double, 6, 1> r_a;

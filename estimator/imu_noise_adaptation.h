@@ -67,9 +67,9 @@ struct ImuChi2Sums {
 // the densities `used` (configured times s_used). Returns false (and adds
 // nothing) when a block of the covariance is not positive definite or the
 // residual is not finite.
-bool AddImuChi2(const Vector15d& residual, const PreintegratedImu& preintegrated,
-                const ImuNoise& used, const ImuNoise& configured,
-                ImuChi2Sums* sums);
+bool AddImuChi2(const Vector15d& residual,
+                const PreintegratedImu& preintegrated, const ImuNoise& used,
+                const ImuNoise& configured, ImuChi2Sums* sums);
 
 class ImuNoiseAdaptation {
  public:

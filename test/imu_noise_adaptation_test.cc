@@ -46,8 +46,7 @@ Vector15d ResidualOfScale(const PreintegratedImu& imu, double k_a, double k_g,
   const Eigen::Matrix<double, 6, 1> r_a =
       k_a * sigma_a.llt().matrixL().toDenseMatrix() * u_a;
   const Eigen::Vector3d r_g =
-      k_g * s.block<3, 3>(kTheta, kTheta).llt().matrixL().toDenseMatrix() *
-      u_g;
+      k_g * s.block<3, 3>(kTheta, kTheta).llt().matrixL().toDenseMatrix() * u_g;
   Vector15d r = Vector15d::Zero();
   r.segment<3>(kP) = r_a.head<3>();
   r.segment<3>(kV) = r_a.tail<3>();
@@ -83,7 +82,8 @@ TEST(ImuNoiseAdaptation, ResidualsOfKnownScaleGiveThatScale) {
   const ImuNoise scaled = adaptation.Scaled(kConfigured);
   EXPECT_NEAR(scaled.accelerometer_noise_density, 1.7 * 1.2e-2, 1e-12);
   EXPECT_NEAR(scaled.gyroscope_noise_density, 0.8 * 1.0e-3, 1e-12);
-  EXPECT_EQ(scaled.accelerometer_random_walk, kConfigured.accelerometer_random_walk);
+  EXPECT_EQ(scaled.accelerometer_random_walk,
+            kConfigured.accelerometer_random_walk);
   EXPECT_EQ(scaled.gyroscope_random_walk, kConfigured.gyroscope_random_walk);
 }
 
@@ -148,7 +148,8 @@ TEST(ImuNoiseAdaptation, ScaleIsClampedAndOffMeansConfigured) {
   ImuNoiseAdaptation disabled(off);
   disabled.Update(sums);
   const ImuNoise n = disabled.Scaled(kConfigured);
-  EXPECT_EQ(n.accelerometer_noise_density, kConfigured.accelerometer_noise_density);
+  EXPECT_EQ(n.accelerometer_noise_density,
+            kConfigured.accelerometer_noise_density);
   EXPECT_EQ(n.gyroscope_noise_density, kConfigured.gyroscope_noise_density);
 }
 
