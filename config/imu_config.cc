@@ -64,6 +64,7 @@ void ApplyImuConfig(const ImuConfig& imu, EstimatorOptions* options) {
   options->gravity_magnitude = imu.gravity_magnitude;
   options->imu_stream.rate_hz = imu.rate_hz;
   options->imu_stream.range = imu.range;
+  options->imu_stream.noise_adaptation.enabled = imu.adapt_noise;
 }
 
 ImuConfig LoadImuConfig(const YamlNode& root) {
@@ -76,6 +77,7 @@ ImuConfig LoadImuConfig(const YamlNode& root) {
   }
   c.rate_hz = imu.Get<double>("rate_hz");
   c.noise = ReadImuNoise(imu);
+  c.adapt_noise = imu.Get<bool>("adapt_noise");
   c.gravity_magnitude = imu.Get<double>("gravity_magnitude");
   c.preintegration.max_sample_gap = imu.Get<double>("max_sample_gap");
   c.preintegration.repropagate_acc_bias_change =

@@ -10,6 +10,7 @@
 //     gyroscope_noise_density: 1.6968e-4    # [rad/s/sqrt(Hz)]    and units,
 //     accelerometer_random_walk: 3.0e-3     # [m/s^3/sqrt(Hz)]    as in EuRoC's
 //     gyroscope_random_walk: 1.9393e-5      # [rad/s^2/sqrt(Hz)]  sensor.yaml)
+//     adapt_noise: false                    # online white-noise scale
 //     gravity_magnitude: 9.81               # [m/s^2]
 //     max_sample_gap: 0.02                  # [s]
 //     repropagate_acc_bias_change: 0.1      # [m/s^2]
@@ -48,6 +49,9 @@ struct ImuConfig {
   // times the datasheet's (rotor vibration on EuRoC's MAV; issue 11).
   ImuNoise noise{1.2e-2, 1.0e-3, 3.0e-3, 1.9393e-5};
   PreintegrationOptions preintegration;
+  // Scale the white-noise densities online from the window's IMU residuals
+  // (estimator/imu_noise_adaptation.h); ApplyImuConfig passes it on.
+  bool adapt_noise = false;
   ImuRange range;          // measuring range: beyond it a sample is a glitch
   double rate_hz = 200.0;  // nominal sample rate [Hz]
   double gravity_magnitude = 9.81;  // g in g_w = (0, 0, -g) [m/s^2]
@@ -64,7 +68,8 @@ struct ImuConfig {
 ImuConfig LoadImuConfig(const YamlNode& root);
 
 // Copies what the estimator takes from the imu: block into its options:
-// gravity_magnitude and imu_stream (rate_hz and the measuring range). Tools
+// gravity_magnitude and imu_stream (rate_hz, the measuring range and
+// adapt_noise). Tools
 // call it after reading both blocks.
 void ApplyImuConfig(const ImuConfig& imu, EstimatorOptions* options);
 

@@ -66,6 +66,7 @@ Estimator::Estimator(const EstimatorOptions& options,
     : options_(options),
       visual_(visual),
       noise_(noise),
+      noise_adaptation_(options.imu_stream.noise_adaptation),
       preintegration_(preintegration),
       cameras_(cameras),
       init_(options, Extrinsics(cameras), FirstFocal(cameras), noise,
@@ -301,8 +302,8 @@ bool Estimator::AppendFrame(const FeatureFrame& frame, int64_t t_imu_ns,
     f->imu = std::make_unique<ImuPreintegration>(
         prev.t_imu_ns, t_imu_ns, imu_,
         Eigen::Vector3d(prev.speed_bias.data() + kSbBa),
-        Eigen::Vector3d(prev.speed_bias.data() + kSbBg), noise_,
-        preintegration_);
+        Eigen::Vector3d(prev.speed_bias.data() + kSbBg),
+        noise_adaptation_.Scaled(noise_), preintegration_);
   } catch (const std::invalid_argument&) {
     ++summary_.frames_without_imu;  // a gap or a hole in the IMU stream
     return false;
@@ -393,6 +394,7 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
     Restart(frame, t_imu_ns, failure,
             Finite(predicted) ? predicted : last_output_);
   } else {
+    AdaptImuNoise();
     Slide(problem);
     RefreshVisualVelocity(window_.frames.back().get());
   }

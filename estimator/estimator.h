@@ -107,6 +107,11 @@ struct EstimatorSummary {
   int64_t frames_visual_only = 0;   // tracked on vision alone across a gap
   int64_t frames_out_of_order = 0;  // stamp not after the last: skipped
   int64_t frames_without_imu = 0;   // no IMU and no visual pose: skipped
+  // imu_stream.noise_adaptation: steps that updated it and the final
+  // white-noise scales (1 when off) [-].
+  int64_t imu_noise_updates = 0;
+  double imu_noise_scale_accelerometer = 1.0;
+  double imu_noise_scale_gyroscope = 1.0;
   int64_t frames_before_init = 0;   // before a start was accepted
   int64_t frames_without_observations = 0;  // processed on the IMU alone
   int64_t observations_skipped = 0;         // non-finite, unknown camera, ...
@@ -247,12 +252,16 @@ class Estimator {
   void Restart(const FeatureFrame& frame, int64_t t_imu_ns, Failure reason,
                const EstimatorOutput& state);
   void TrimImu();
+  // After a successful step: the window's IMU residuals into
+  // noise_adaptation_ (when on, and only when every frame is IMU-linked).
+  void AdaptImuNoise();
   CameraPoseFn PoseFn() const;
   EstimatorOutput OutputOf(const WindowFrame& frame, int64_t t_ns) const;
 
   EstimatorOptions options_;
   VisualFactorOptions visual_;
-  ImuNoise noise_;
+  ImuNoise noise_;  // as configured; new intervals use noise_adaptation_'s
+  ImuNoiseAdaptation noise_adaptation_;
   PreintegrationOptions preintegration_;
   std::vector<EstimatorCamera> cameras_;
 

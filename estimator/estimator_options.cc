@@ -52,6 +52,10 @@ bool EstimatorOptions::Validate(std::string* message) const {
   std::string range_message;
   c.Nested("imu_stream.", imu_stream.range.Validate(&range_message),
            range_message);
+  std::string adaptation_message;
+  c.Nested("imu_stream.noise_adaptation.",
+           imu_stream.noise_adaptation.Validate(&adaptation_message),
+           adaptation_message);
   c.AtLeast("solver.max_iterations", solver.max_iterations, 1);
   c.Require(solver.function_tolerance >= 0.0 && solver.function_tolerance < 1.0,
             "solver.function_tolerance", solver.function_tolerance,

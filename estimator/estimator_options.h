@@ -12,6 +12,7 @@
 
 #include <string>
 
+#include "estimator/imu_noise_adaptation.h"
 #include "estimator/initialization_options.h"
 #include "preintegration/imu_glitch_filter.h"
 
@@ -103,6 +104,9 @@ struct ImuStreamOptions {
   // A sample outside the measuring range is a glitch: replaced from its
   // neighbours and counted (preintegration/imu_glitch_filter.h).
   ImuRange range;
+  // The white-noise densities scaled online from the window's IMU residuals
+  // (estimator/imu_noise_adaptation.h; the imu: block's adapt_noise).
+  ImuNoiseAdaptationOptions noise_adaptation;
 };
 
 // Which code minimises each step's problem.

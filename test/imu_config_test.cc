@@ -18,6 +18,7 @@ imu:
   gyroscope_noise_density: 1.6968e-4
   accelerometer_random_walk: 3.0e-3
   gyroscope_random_walk: 1.9393e-5
+  adapt_noise: false
   gravity_magnitude: 9.81
   max_sample_gap: 0.02
   repropagate_acc_bias_change: 0.1

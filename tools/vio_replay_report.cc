@@ -102,6 +102,13 @@ void PrintSummary(const EstimatorSummary& s,
       (long long)(s.frames_out_of_order + s.frames_without_imu));
   std::printf("  keyframes   %lld\n", (long long)s.keyframes);
   std::printf("  resets      %lld\n", (long long)s.resets);
+  if (s.imu_noise_updates > 0) {
+    std::printf(
+        "  imu noise   white-noise scale accelerometer %.3f, gyroscope %.3f "
+        "(adapted over %lld steps)\n",
+        s.imu_noise_scale_accelerometer, s.imu_noise_scale_gyroscope,
+        (long long)s.imu_noise_updates);
+  }
   for (const ResetEvent& e : s.reset_log) {
     std::printf("    at %lld ns: %s\n", (long long)e.t_ns,
                 FailureName(e.reason));
