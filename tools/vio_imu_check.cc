@@ -43,7 +43,7 @@ constexpr char kUsage[] =
     "\n"
     "  --ground-truth FILE  EuRoC CSV or TUM (default: the folder's)\n"
     "  --knot-spacing S     of the fitted B-spline [s] (default 0.05)\n"
-"  --rotation-knot-spacing S  of its rotations (default 0: the same)\n"
+    "  --rotation-knot-spacing S  of its rotations (default 0: the same)\n"
     "  --max-offset S       offsets searched in [-S, S] (default 0.05)\n"
     "  --offset S           compare with the ground truth's stamps moved by\n"
     "                       -S, to see what correcting an offset would do\n"
