@@ -263,7 +263,7 @@ void Estimator::TryReinitialize(const FeatureFrame& frame, int64_t t_imu_ns,
   InitialWindow start;
   if (!init_.TryInMotion(imu_, &summary_.init_attempts, &start)) return;
   // The running estimate fixes the gauge: the trajectory continues.
-  SetGauge(out->p_w_b, Yaw(out->q_w_b.toRotationMatrix()), &start);
+  SetGauge(out->p_w_b, out->q_w_b, &start);
   if (!StartFromInitialWindow(start, /*restart=*/true)) return;
   reinit_pending_ = false;
   init_.Clear();
