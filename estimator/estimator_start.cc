@@ -23,7 +23,6 @@
 #include "estimator/image_velocity.h"
 #include "estimator/scale_uncertainty.h"
 #include "estimator/state_prior.h"
-#include "estimator/static_initializer.h"
 #include "preintegration/imu_preintegration.h"
 
 namespace vio {
