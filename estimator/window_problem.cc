@@ -1,5 +1,6 @@
 #include "estimator/window_problem.h"
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <tuple>
 
@@ -392,7 +393,8 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
     const bool use = prior || r.imu_start_frame == oldest.id ||
                      r.link_start_frame == oldest.id ||
                      (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-                      !excluded.Involves(r.feature_id));
+                      !excluded.Involves(r.feature_id) &&
+                      !std::getenv("SKIP_VISUAL_IN_PRIOR"));
     if (!use) continue;
     if (r.feature_id >= 0) {
       static std::map<std::tuple<int64_t, int64_t, int>, int> seen;
@@ -422,7 +424,7 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
   }
   for (const Residual& r : residuals_) {
     if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-        !excluded.Involves(r.feature_id) &&
+        !excluded.Involves(r.feature_id) && !std::getenv("SKIP_VISUAL_IN_PRIOR") &&
         (m.marginalized.empty() || m.marginalized.back() != r.rho)) {
       m.marginalized.push_back(r.rho);
     }
