@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <utility>
 
 namespace vio {
@@ -202,7 +201,6 @@ void SimFeatureTracker::Track(int64_t t_ns, const Eigen::Quaterniond& q_w_b,
     kept.push_back(track);
   }
   tracks_ = std::move(kept);
-  const int64_t first_new = static_cast<int64_t>(landmark_of_feature_.size());
   if (static_cast<int>(tracks_.size()) < options_.max_features_per_frame) {
     std::vector<std::pair<int, Eigen::Vector2d>> visible;
     for (int l = 0; l < static_cast<int>(landmarks_w_->size()); ++l) {
@@ -225,7 +223,6 @@ void SimFeatureTracker::Track(int64_t t_ns, const Eigen::Quaterniond& q_w_b,
       obs.camera = camera;
       bool outlier = false;
       obs.uv = Measure(camera, uv, &outlier);
-      if (std::getenv("SIM_CLEAN_FIRST") && track.feature_id >= first_new) obs.uv = uv;
       frame->observations.push_back(obs);
       is_outlier->push_back(outlier);
     }

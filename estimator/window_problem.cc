@@ -1,8 +1,4 @@
 #include "estimator/window_problem.h"
-#include <cstdio>
-#include <cstdlib>
-#include <map>
-#include <tuple>
 
 #include <algorithm>
 #include <cmath>
@@ -393,20 +389,8 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
     const bool use = prior || r.imu_start_frame == oldest.id ||
                      r.link_start_frame == oldest.id ||
                      (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-                      !excluded.Involves(r.feature_id) &&
-                      !std::getenv("SKIP_VISUAL_IN_PRIOR"));
+                      !excluded.Involves(r.feature_id));
     if (!use) continue;
-    if (r.feature_id >= 0) {
-      static std::map<std::tuple<int64_t, int64_t, int>, int> seen;
-      static std::map<int, long> hist;
-      static long calls = 0;
-      const int c = ++seen[{r.feature_id, r.target_frame, r.target_camera}];
-      ++hist[c];
-      if (++calls % 20000 == 0) {
-        for (auto& [k, v] : hist) std::fprintf(stderr, "mult %d %ld\n", k, v);
-        std::fprintf(stderr, "----\n");
-      }
-    }
     m.residual_blocks.push_back({r.cost, r.loss, r.blocks});
     touched.insert(r.blocks.begin(), r.blocks.end());
   }
@@ -424,7 +408,7 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
   }
   for (const Residual& r : residuals_) {
     if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-        !excluded.Involves(r.feature_id) && !std::getenv("SKIP_VISUAL_IN_PRIOR") &&
+        !excluded.Involves(r.feature_id) &&
         (m.marginalized.empty() || m.marginalized.back() != r.rho)) {
       m.marginalized.push_back(r.rho);
     }
