@@ -112,7 +112,7 @@ struct EstimatorSummary {
   int64_t imu_noise_updates = 0;
   double imu_noise_scale_accelerometer = 1.0;
   double imu_noise_scale_gyroscope = 1.0;
-  int64_t frames_before_init = 0;   // before a start was accepted
+  int64_t frames_before_init = 0;           // before a start was accepted
   int64_t frames_without_observations = 0;  // processed on the IMU alone
   int64_t observations_skipped = 0;         // non-finite, unknown camera, ...
   int64_t landmarks_triangulated = 0;
@@ -203,7 +203,10 @@ class Estimator {
   // checks. On failure the previous window is restored, the reason logged,
   // and false returned.
   bool StartFromInitialWindow(const InitialWindow& start, bool restart);
-  bool BuildWindow(const InitialWindow& start);
+  // The adjustment's gauge (position, yaw) is held on the oldest frame of a
+  // first start and on the newest of a re-start (`restart`), the frame
+  // SetGauge gave the running pose.
+  bool BuildWindow(const InitialWindow& start, bool restart);
   InitFailure RefineStart(InitMethod method, InitDiagnostics* diagnostics,
                           double* value, double* limit);
   // After a reset while moving: feeds the in-motion initialiser and, when it

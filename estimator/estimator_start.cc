@@ -23,7 +23,6 @@
 #include "estimator/image_velocity.h"
 #include "estimator/scale_uncertainty.h"
 #include "estimator/state_prior.h"
-#include "estimator/static_initializer.h"
 #include "preintegration/imu_preintegration.h"
 
 namespace vio {
@@ -101,7 +100,7 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   const size_t n = start.frames.size();
   double value = 0.0, limit = 0.0;
   InitFailure reason = InitFailure::kImuUnavailable;
-  if (BuildWindow(start)) {
+  if (BuildWindow(start, restart)) {
     const double path_before = PathLength(window_);
     reason = RefineStart(start.method, &record.diagnostics, &value, &limit);
     record.diagnostics.refine_scale_change =
@@ -133,7 +132,7 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   return true;
 }
 
-bool Estimator::BuildWindow(const InitialWindow& start) {
+bool Estimator::BuildWindow(const InitialWindow& start, bool restart) {
   features_ = FeatureManager(window_.num_cameras);
   for (const InitialFrame& s : start.frames) {
     auto f = std::make_unique<WindowFrame>();
@@ -180,15 +179,21 @@ bool Estimator::BuildWindow(const InitialWindow& start) {
   }
   summary_.landmarks_triangulated +=
       features_.TriangulateNew(PoseFn(), options_.triangulation);
-  // The gauge (position, yaw) held on the oldest frame; roll, pitch and
-  // velocity left loose so that the adjustment corrects the alignment's
-  // gravity and scale; the biases keep state_prior's sigmas.
+  // The gauge (position, yaw) held on one frame; roll, pitch and velocity
+  // left loose so that the adjustment corrects the alignment's gravity and
+  // scale; the biases keep state_prior's sigmas. A scale change moves every
+  // frame but the held one, so a re-start holds its newest, the frame
+  // SetGauge put at the running pose: held on the oldest (as before), a
+  // +14 % scale change moved the newest, and so the trajectory, 0.86 m at
+  // the re-start (test/reinitialization_test.cc). A first start's gauge is
+  // arbitrary; it keeps the oldest.
   StatePriorOptions sigmas = options_.state_prior;
   sigmas.tilt_rad = options_.init.refine_tilt_rad;
-  WindowFrame& oldest = *window_.frames.front();
-  prior_ = MakeStatePrior(oldest.pose.data(), oldest.speed_bias.data(), sigmas,
+  WindowFrame& held =
+      restart ? *window_.frames.back() : *window_.frames.front();
+  prior_ = MakeStatePrior(held.pose.data(), held.speed_bias.data(), sigmas,
                           options_.init.max_speed_m_s);
-  prior_blocks_ = {oldest.pose.data(), oldest.speed_bias.data()};
+  prior_blocks_ = {held.pose.data(), held.speed_bias.data()};
   SetExtrinsicPrior();
   last_keyframe_id_ = window_.frames.back()->id;
   return true;
@@ -263,7 +268,7 @@ void Estimator::TryReinitialize(const FeatureFrame& frame, int64_t t_imu_ns,
   InitialWindow start;
   if (!init_.TryInMotion(imu_, &summary_.init_attempts, &start)) return;
   // The running estimate fixes the gauge: the trajectory continues.
-  SetGauge(out->p_w_b, Yaw(out->q_w_b.toRotationMatrix()), &start);
+  SetGauge(out->p_w_b, out->q_w_b, &start);
   if (!StartFromInitialWindow(start, /*restart=*/true)) return;
   reinit_pending_ = false;
   init_.Clear();

@@ -72,11 +72,25 @@ struct StartRecord {
 };
 
 // Moves the window rigidly about the world z axis and along it so that its
-// newest frame gets position p_w_b and the yaw `yaw_rad` (the 4-DoF gauge of
-// visual-inertial odometry: a start fixes it, a re-start keeps the running
-// one). Velocities and points follow; roll, pitch, biases are unchanged.
+// newest frame gets position p_w_b and the yaw `yaw_rad` (Yaw(): the heading
+// of the body x axis). This fixes the 4-DoF gauge of visual-inertial
+// odometry at a first start. Velocities and points follow; roll, pitch,
+// biases are unchanged.
 void SetGauge(const Eigen::Vector3d& p_w_b, double yaw_rad,
               InitialWindow* window);
+
+// The same move for a re-start, which keeps the running gauge: the newest
+// frame gets position p_w_b and, of the attitudes a rotation about world z
+// can give it, the one closest to q_w_b (YawBetween).
+void SetGauge(const Eigen::Vector3d& p_w_b, const Eigen::Quaterniond& q_w_b,
+              InitialWindow* window);
+
+// The angle [rad] of the rotation about world z that brings R_from closest
+// to R_to over all three body axes: argmin_theta |Rz(theta) R_from - R_to|_F.
+// A difference of Yaw()s is not that when the body x axis points nearly up
+// (EuRoC's IMU x does): its heading is then ill-defined, and a tilt
+// difference of a degree turns into tens of degrees of yaw.
+double YawBetween(const Eigen::Matrix3d& R_from, const Eigen::Matrix3d& R_to);
 
 }  // namespace vio
 

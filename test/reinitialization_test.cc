@@ -90,6 +90,34 @@ double ScaleError(const StartRecord& start) {
   return spread(false) / spread(true) - 1.0;
 }
 
+// The step into the frame at t_ns from the one before it, estimated against
+// true, in the earlier frame's body axes (so free of the gauge): how far the
+// output jumps there [m] and how much it turns beyond the true turn [rad].
+// (The simulation has no camera time offset: frame stamps are truth stamps.)
+struct Jump {
+  double position_m = 0.0;
+  double rotation_rad = 0.0;
+};
+Jump JumpAt(const SimReplay& r, int64_t t_ns) {
+  Jump jump;
+  for (size_t k = 1; k < r.outputs.size(); ++k) {
+    if (r.outputs[k].t_ns != t_ns) continue;
+    const EstimatorOutput& a = r.outputs[k - 1];
+    const EstimatorOutput& b = r.outputs[k];
+    const StampedState& ta = TruthAt(a.t_ns);
+    const StampedState& tb = TruthAt(b.t_ns);
+    const Eigen::Vector3d step = a.q_w_b.conjugate() * (b.p_w_b - a.p_w_b);
+    const Eigen::Vector3d true_step =
+        ta.q_w_b.conjugate() * (tb.p_w_b - ta.p_w_b);
+    jump.position_m = (step - true_step).norm();
+    jump.rotation_rad = (a.q_w_b.conjugate() * b.q_w_b)
+                            .angularDistance(ta.q_w_b.conjugate() * tb.q_w_b);
+    return jump;
+  }
+  jump.position_m = jump.rotation_rad = std::numeric_limits<double>::infinity();
+  return jump;
+}
+
 void ExpectResetWhileMoving(const SimReplay& r) {
   ASSERT_GE(r.summary.resets, 1);
   EXPECT_EQ(r.summary.reset_log[0].reason, Failure::kUnsafeState);
@@ -111,8 +139,8 @@ TEST(Reinitialization, OffTheResetOnlyRestartsFromThePrediction) {
   ExpectResetWhileMoving(r);
   EXPECT_EQ(r.summary.reinitializations, 0);
   EXPECT_EQ(r.summary.starts.size(), 1u);
-  // The restarted window keeps the map: the run stays near the truth
-  // (measured 0.19 m with the reset, 0.50 m re-initialised).
+  // The restart keeps the running state: the run stays near the truth
+  // (measured 0.19 m with the reset, 0.25 m re-initialised).
   EXPECT_LT(r.ate_rmse_m, 0.3);
 }
 
@@ -138,22 +166,36 @@ TEST(Reinitialization, OnTheInMotionStartReplacesTheRestartedWindow) {
                                        again.window.front().t_ns),
             defaults.init.mono.min_span_s - 0.05);
   EXPECT_GE(again.window.front().t_ns, r.summary.reset_log[0].t_ns);
+  // The trajectory continues through the re-start: no jump beyond a
+  // frame's error. Before the re-start held its gauge on the frame given the
+  // running pose, a scale change in its adjustment moved that frame 0.86 m;
+  // with the yaw taken from the heading of body x (nearly vertical on this
+  // IMU) its attitude turned by tens of degrees in the stereo presets.
+  const Jump jump = JumpAt(r, again.t_ns);
+  EXPECT_LT(jump.position_m, 0.1);
+  EXPECT_LT(jump.rotation_rad, 2.0 * M_PI / 180.0);
   // Its scale against the truth, for the docs (measured +55 %, where the
-  // joint adjustment's own covariance claims 14 %).
-  std::printf("re-start at %.2f s after the reset: scale error %+.1f %% "
-              "(claimed sigma %.1f %%)\n",
-              after_s, 100.0 * ScaleError(again),
-              100.0 * again.diagnostics.refined_scale_sigma);
+  // joint adjustment's own covariance claims 14 %: the accelerometer bias
+  // and the scale trade off over these 2 s, docs/initialisation.md).
+  std::printf(
+      "re-start at %.2f s after the reset: scale error %+.1f %% "
+      "(claimed sigma %.1f %%), jump %.3f m, %.2f deg\n",
+      after_s, 100.0 * ScaleError(again),
+      100.0 * again.diagnostics.refined_scale_sigma, jump.position_m,
+      jump.rotation_rad * 180.0 / M_PI);
   EXPECT_GT(r.ate_rmse_m, 0.0);
 }
 
 TEST(Reinitialization, TheDefaultRestartIsTheBetterOnThisReset) {
   // Why init.reinitialize_after_reset is false (docs/initialisation.md): the
-  // restart keeps the map's scale and attitude, a fresh start re-estimates
-  // them from 1.5 s of motion. Should the re-initialisation ever become the
-  // better, the default has to be revisited.
-  std::printf("ATE with the reset: restart only %.4f m, re-initialised %.4f m\n",
-              Off().ate_rmse_m, On().ate_rmse_m);
+  // restart carries the running velocity (so the scale), attitude and
+  // biases on, a fresh mono start re-estimates them from 2 s of motion
+  // (+55 % of scale here). Should the re-initialisation ever become the
+  // better, the default has to be revisited (on the stereo rows of the
+  // docs' table it already is, by 2-3 mm).
+  std::printf(
+      "ATE with the reset: restart only %.4f m, re-initialised %.4f m\n",
+      Off().ate_rmse_m, On().ate_rmse_m);
   EXPECT_LT(Off().ate_rmse_m, On().ate_rmse_m);
 }
 
