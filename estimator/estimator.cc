@@ -429,6 +429,9 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
 
 void Estimator::Solve(WindowProblem* problem) {
   summary_.landmarks_per_step.push_back(problem->landmarks_used());
+  summary_.window_frames_per_step.push_back(
+      static_cast<int>(window_.frames.size()));
+  summary_.residuals_per_step.push_back(problem->num_residuals());
   const double cpu_start = ThreadCpuSeconds();
   const ceres::Solver::Summary solve =
       problem->Solve(options_.solver, &solver_);

@@ -135,6 +135,10 @@ struct EstimatorSummary {
   std::vector<double> marginalization_time_s;      // wall, each [s]
   std::vector<double> marginalization_cpu_time_s;  // thread CPU, each [s]
   std::vector<int> landmarks_per_step;
+  // Per step, the work the solver time is spent on: the frames in the window
+  // and the residuals in the problem (visual, IMU, priors, zero motion).
+  std::vector<int> window_frames_per_step;
+  std::vector<int> residuals_per_step;
   // The start: every failed attempt (at most one per method and frame), and
   // every accepted start (the first, then re-initialisations after resets).
   std::vector<InitAttempt> init_attempts;

@@ -5,7 +5,12 @@
 // residuals and tangent Jacobians at the current values, the normal
 // equations with the inverse depths eliminated by their (scalar) Schur
 // complements, and the damped solve. The iteration itself (trust region,
-// stopping) is in window_solver.cc.
+// stopping) is in window_solver.cc. The class is defined in three files:
+// window_linearization.cc (the set-up of the structure, the state),
+// window_linearization_residuals.cc (residuals and tangent Jacobians, the
+// robust correction, the prior's linearisation, a candidate's cost) and
+// window_linearization_schur.cc (the normal equations, the landmarks' Schur
+// elimination, the damped solve).
 //
 // Notation (tangent space): r the stacked, robust-corrected residuals, J their
 // Jacobian, A = J^T J and g = J^T r, split into reduced coordinates (index r)

@@ -126,6 +126,8 @@ class WindowProblem {
 
   int num_visual_residuals() const { return num_visual_; }
   int landmarks_used() const { return landmarks_used_; }
+  // Every residual of the problem: visual, IMU, priors and frame links.
+  int num_residuals() const { return static_cast<int>(residuals_.size()); }
 
  private:
   struct Residual {

@@ -33,6 +33,20 @@ InverseDepthChain::InverseDepthChain(const Eigen::Vector3d& f_a, double rho,
   h_c_ = d_hc_d_hbj_ * (h_bj_ - rho_ * t_b_c_);
 }
 
+Eigen::Vector3d InverseDepthChain::PointInTarget(const Eigen::Vector3d& f_a,
+                                                 double rho, const Rigid& T_b_a,
+                                                 const Rigid& T_w_bi,
+                                                 const Rigid& T_w_bj,
+                                                 const Rigid& T_b_c) {
+  // The constructor's h_bi, h_w, h_bj and h_c, operation for operation
+  // (R_b_c^T materialised as there): d_hc_d_hw and d_hc_d_hbi are skipped.
+  const Eigen::Vector3d h_bi = T_b_a.R * f_a + rho * T_b_a.t;
+  const Eigen::Vector3d h_w = T_w_bi.R * h_bi + rho * T_w_bi.t;
+  const Eigen::Vector3d h_bj = T_w_bj.R.transpose() * (h_w - rho * T_w_bj.t);
+  const Eigen::Matrix3d R_c_b = T_b_c.R.transpose();
+  return R_c_b * (h_bj - rho * T_b_c.t);
+}
+
 InverseDepthChain::InverseDepthChain(const Eigen::Vector3d& f_a, double rho,
                                      const Rigid& T_b_a, const Rigid& T_b_c)
     : f_a_(f_a), rho_(rho), R_b_a_(T_b_a.R), t_b_a_(T_b_a.t), t_b_c_(T_b_c.t) {

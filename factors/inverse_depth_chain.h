@@ -78,6 +78,12 @@ class InverseDepthChain {
 
   // h_c, the point in the target camera scaled by rho.
   const Eigen::Vector3d& h_c() const { return h_c_; }
+  // The two-keyframe constructor's h_c alone, without the rotation products
+  // only its derivatives need: for residual-only evaluations (a trust-region
+  // step's candidate cost). The same arithmetic, so the same bits.
+  static Eigen::Vector3d PointInTarget(const Eigen::Vector3d& f_a, double rho,
+                                       const Rigid& T_b_a, const Rigid& T_w_bi,
+                                       const Rigid& T_w_bj, const Rigid& T_b_c);
 
   // d h_c / d [dt, dtheta] of pose i and pose j (two-keyframe chain only).
   Matrix36 d_h_d_pose_i() const;

@@ -25,22 +25,29 @@ bool ReprojectionFactor::Compute(double const* const* parameters,
                                  bool tangent) const {
   const Rigid T_b_c = Rigid::FromBlock(parameters[kExtrinsic]);
   const double rho = parameters[kInverseDepth][0];
+  Eigen::Map<Eigen::Vector2d> r(residuals);
+  if (jacobians == nullptr) {
+    r = ProjectResidual(
+            InverseDepthChain::PointInTarget(
+                f_i_, rho, T_b_c, Rigid::FromBlock(parameters[kPoseI]),
+                Rigid::FromBlock(parameters[kPoseJ]), T_b_c),
+            xy_j_, sqrt_info_)
+            .r;
+    return true;
+  }
   const InverseDepthChain chain(f_i_, rho, T_b_c,
                                 Rigid::FromBlock(parameters[kPoseI]),
                                 Rigid::FromBlock(parameters[kPoseJ]), T_b_c);
   const ProjectedResidual p = ProjectResidual(chain.h_c(), xy_j_, sqrt_info_);
-  Eigen::Map<Eigen::Vector2d> r(residuals);
   r = p.r;
-  if (jacobians != nullptr) {
-    // One camera is both the anchor and the target: T_b_c enters the chain
-    // twice (kSharedExtrinsic sums both paths).
-    WriteChainJacobians(
-        p, chain,
-        {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kSharedExtrinsic,
-         ChainBlock::kInverseDepth},
-        parameters, jacobians,
-        tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
-  }
+  // One camera is both the anchor and the target: T_b_c enters the chain
+  // twice (kSharedExtrinsic sums both paths).
+  WriteChainJacobians(
+      p, chain,
+      {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kSharedExtrinsic,
+       ChainBlock::kInverseDepth},
+      parameters, jacobians,
+      tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
   return true;
 }
 

@@ -64,23 +64,32 @@ bool StereoTwoFrameReprojectionFactor::Compute(double const* const* parameters,
                                                double* residuals,
                                                double** jacobians,
                                                bool tangent) const {
+  Eigen::Map<Eigen::Vector2d> r(residuals);
+  if (jacobians == nullptr) {
+    r = ProjectResidual(InverseDepthChain::PointInTarget(
+                            f_i_, parameters[kInverseDepth][0],
+                            Rigid::FromBlock(parameters[kExtrinsic0]),
+                            Rigid::FromBlock(parameters[kPoseI]),
+                            Rigid::FromBlock(parameters[kPoseJ]),
+                            Rigid::FromBlock(parameters[kExtrinsic1])),
+                        xy_j_, sqrt_info_)
+            .r;
+    return true;
+  }
   const InverseDepthChain chain(f_i_, parameters[kInverseDepth][0],
                                 Rigid::FromBlock(parameters[kExtrinsic0]),
                                 Rigid::FromBlock(parameters[kPoseI]),
                                 Rigid::FromBlock(parameters[kPoseJ]),
                                 Rigid::FromBlock(parameters[kExtrinsic1]));
   const ProjectedResidual p = ProjectResidual(chain.h_c(), xy_j_, sqrt_info_);
-  Eigen::Map<Eigen::Vector2d> r(residuals);
   r = p.r;
-  if (jacobians != nullptr) {
-    // cam0 of keyframe i is the anchor, cam1 of keyframe j the target.
-    WriteChainJacobians(
-        p, chain,
-        {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kAnchorExtrinsic,
-         ChainBlock::kTargetExtrinsic, ChainBlock::kInverseDepth},
-        parameters, jacobians,
-        tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
-  }
+  // cam0 of keyframe i is the anchor, cam1 of keyframe j the target.
+  WriteChainJacobians(
+      p, chain,
+      {ChainBlock::kPoseI, ChainBlock::kPoseJ, ChainBlock::kAnchorExtrinsic,
+       ChainBlock::kTargetExtrinsic, ChainBlock::kInverseDepth},
+      parameters, jacobians,
+      tangent ? JacobianSpace::kTangent : JacobianSpace::kAmbient);
   return true;
 }
 

@@ -11,6 +11,8 @@ shared machine those move by 2x from run to run.
 
 Figures, all parsed from vio_replay's own summary except the last two:
   solver step CPU median and p95 [ms]  (CPU time of the solving thread)
+  the work per step: window frames and residuals (medians) and iterations
+  (the baseline's summary has only the iterations)
   marginalisation CPU median [ms]
   real-time factor of the estimator loop [x]  (the summary's "x real time")
   frames per second of the whole image replay (images, frontend, estimator)
@@ -47,7 +49,8 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 # name -> (sequence: "sim_<preset>" or a path under ../shared/data,
-#          config file, extra substitutions applied to both sides' configs)
+#          config file, extra substitutions applied to both sides' configs
+#          [, substitutions applied to the new side's config only])
 CASES = {
     "default": ("sim_default", "config/default.yaml", []),
     "stereo": ("sim_stereo", "config/stereo.yaml", []),
@@ -57,12 +60,20 @@ CASES = {
     "outliers": ("sim_outliers", "config/default.yaml", []),
     "euroc_v1_01_stereo": ("data/euroc_V1_01_first5s",
                            "config/euroc_stereo.yaml", []),
+    # The new build started as the baseline starts (it had only the static
+    # start): the same window, so the same work per step (docs/speed.md).
+    "euroc_v1_01_stereo_static": ("data/euroc_V1_01_first5s",
+                                  "config/euroc_stereo.yaml", [],
+                                  [(r"method: auto ", "method: static ")]),
 }
 
 FIGURES = [
     # key, label, unit, format
     ("solver_median", "solver step CPU median", "ms", "%.2f"),
     ("solver_p95", "solver step CPU p95", "ms", "%.2f"),
+    ("window_frames", "window frames per step median", "-", "%.0f"),
+    ("residuals", "residuals per step median", "-", "%.0f"),
+    ("iterations", "iterations per step", "-", "%.1f"),
     ("marg_median", "marginalisation CPU median", "ms", "%.2f"),
     ("realtime", "estimator real-time factor", "x", "%.1f"),
     ("frames_per_s", "image replay frames/s", "1/s", "%.1f"),
@@ -130,7 +141,8 @@ def configs(args, base_src):
     folder = os.path.join(args.work, "configs")
     os.makedirs(folder, exist_ok=True)
     for name in args.cases:
-        _, config, subs = CASES[name]
+        _, config, subs = CASES[name][:3]
+        new_subs = CASES[name][3] if len(CASES[name]) > 3 else []
         base_text = open(os.path.join(base_src, config)).read()
         new_text = open(os.path.join(REPO, config)).read()
         base_path = os.path.join(folder, "base_%s.yaml" % name)
@@ -138,7 +150,7 @@ def configs(args, base_src):
         write_config(base_text,
                      subs + [(r"max_time_s: *[0-9.eE+-]+", "max_time_s: 100")],
                      base_path)
-        write_config(new_text, subs, new_path)
+        write_config(new_text, subs + new_subs, new_path)
         out[name] = {"base": base_path, "new": new_path}
     return out
 
@@ -182,6 +194,11 @@ def parse(text):
     return {
         "solver_median": number(r"solver time per step +median ([\d.]+) ms", text),
         "solver_p95": number(r"solver time per step +median [\d.]+ ms, p95 ([\d.]+) ms", text),
+        "window_frames": number(r"solver work per step +median ([\d.]+) "
+                                r"window frames", text),
+        "residuals": number(r"solver work per step +median [\d.]+ window "
+                            r"frames, ([\d.]+) residuals", text),
+        "iterations": number(r"; ([\d.]+) iterations per step", text),
         "marg_median": number(r"marginalisation +median ([\d.]+) ms", text),
         "realtime": number(r"of data: ([\d.]+)x real time", text),
         "frames_per_s": number(r"full replay ([\d.]+) frames/s", text),

@@ -160,6 +160,28 @@ TEST_P(VisualFactorTest, TangentJacobiansEqualAmbientTimesPlusJacobian) {
   }
 }
 
+TEST_P(VisualFactorTest, ResidualOnlyEvaluationGivesTheSameBits) {
+  // The window solver's candidate costs evaluate without Jacobians (a
+  // shorter path in the two-frame factors); a trajectory that must not
+  // change needs the very same residual bits as with Jacobians.
+  for (VisualGeometry geometry :
+       {VisualGeometry::kMixed, VisualGeometry::kFarPoint,
+        VisualGeometry::kNegativeDepth, VisualGeometry::kNearTargetCamera}) {
+    const FactorCase c = MakeCase(geometry);
+    std::mt19937 rng(21);
+    for (int t = 0; t < 200; ++t) {
+      const FactorInstance f = c.sample(rng);
+      const Evaluation with_jacobians = Evaluate(f);
+      std::vector<const double*> params;
+      for (const auto& block : f.blocks) params.push_back(block.data());
+      Eigen::VectorXd r(f.cost->num_residuals());
+      ASSERT_EQ(f.cost->Evaluate(params.data(), r.data(), nullptr),
+                with_jacobians.ok);
+      EXPECT_EQ(r, with_jacobians.r) << c.name << " trial " << t;
+    }
+  }
+}
+
 TEST_P(VisualFactorTest, ResidualIsProjectionErrorInUnitsOfSigma) {
   std::mt19937 rng(11);
   for (int t = 0; t < 20; ++t) {

@@ -1,5 +1,6 @@
 #include "estimator/window_problem.h"
 
+#include <ceres/normal_prior.h>
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -76,6 +77,21 @@ TEST_F(WindowProblemOutliers, ExcludesALandmarkBehindFromTheMarginalization) {
       &features_.landmarks().at(1).inverse_depth};
   EXPECT_EQ(m.marginalized, expected);
   EXPECT_EQ(m.residual_blocks.size(), 1u);
+}
+
+TEST_F(WindowProblemOutliers, CountsEveryResidualNotOnlyTheVisualOnes) {
+  // The summary's work per step (vio_replay's "solver work per step"): the
+  // two landmarks' sightings in frame 1 plus a frame link on frame 0's pose.
+  WindowProblem problem(&window_, &features_, WindowProblemSettings());
+  ASSERT_EQ(problem.AddVisualFactors(), 2);
+  problem.AddFrameLink(std::make_unique<ceres::NormalPrior>(
+                           Eigen::Matrix<double, 7, 7>::Identity(),
+                           Eigen::Map<const Eigen::Matrix<double, 7, 1>>(
+                               window_.frames.front()->pose.data())),
+                       {window_.frames.front()->pose.data()},
+                       /*start_frame=*/0);
+  EXPECT_EQ(problem.num_visual_residuals(), 2);
+  EXPECT_EQ(problem.num_residuals(), 3);
 }
 
 }  // namespace

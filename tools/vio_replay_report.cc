@@ -129,6 +129,14 @@ void PrintSummary(const EstimatorSummary& s,
           ? 0.0
           : static_cast<double>(s.solver_iterations) / s.solver_time_s.size());
   std::printf(
+      "  solver work per step  median %.0f window frames, %.0f residuals\n",
+      Quantile(std::vector<double>(s.window_frames_per_step.begin(),
+                                   s.window_frames_per_step.end()),
+               0.5),
+      Quantile(std::vector<double>(s.residuals_per_step.begin(),
+                                   s.residuals_per_step.end()),
+               0.5));
+  std::printf(
       "  marginalisation       median %.2f ms, max %.2f ms CPU (%lld, "
       "%lld failed)\n",
       1e3 * Quantile(s.marginalization_cpu_time_s, 0.5),
