@@ -57,6 +57,29 @@ double FirstFocal(const std::vector<EstimatorCamera>& cameras) {
   return cameras.empty() ? 460.0 : cameras[0].focal_px;
 }
 
+// The state a pre-solve restart starts from: the last output carried to the
+// frame's stamp, since that output is one frame step old. The IMU prediction
+// of the step is what exploded, so its position and velocity are useless
+// (an accelerometer spike of 1e6 m/s^2 puts it 40-50 m off: the trajectory's
+// ATE, docs/initialisation.md); the position moves on at the last velocity,
+//   p = p_last + v_last dt   (error a dt^2 / 2, ~1 mm at 1 m/s^2 and 50 ms),
+// and the attitude takes the prediction's, the gyroscope's alone, when finite.
+// Held at the last output, as before, the restart lagged one frame step
+// (0.054 m and the rotation over that step at the test's reset), an offset
+// that the new window, gauge-free in position and yaw, never removes.
+EstimatorOutput CarriedToFrame(const EstimatorOutput& last,
+                               const EstimatorOutput& predicted,
+                               int64_t t_ns) {
+  EstimatorOutput carried = last;
+  carried.t_ns = t_ns;
+  const double dt = 1e-9 * static_cast<double>(t_ns - last.t_ns);
+  carried.p_w_b = last.p_w_b + last.v_w * dt;
+  if (predicted.q_w_b.coeffs().allFinite()) {
+    carried.q_w_b = predicted.q_w_b.normalized();
+  }
+  return carried;
+}
+
 }  // namespace
 
 Estimator::Estimator(const EstimatorOptions& options,
@@ -368,7 +391,8 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   // Ceres stops the program on a non-finite block: never hand it one.
   if (CheckWindowState(window_, features_, options_.failure.max_speed_m_s) !=
       StateDefect::kNone) {
-    Restart(frame, t_imu_ns, Failure::kUnsafeState, last_output_);
+    Restart(frame, t_imu_ns, Failure::kUnsafeState,
+            CarriedToFrame(last_output_, predicted, frame.t_ns));
     *out = OutputOf(*window_.frames.back(), frame.t_ns);
     return true;
   }
