@@ -8,13 +8,19 @@
 #   scripts/sanitize.sh --configure [ARGS]  configure only, ARGS to cmake
 #   scripts/sanitize.sh --test           run ctest only, on the built folder
 #
-# Tests labelled `slow` are left out (see docs/testing.md for which and why);
-# VIO_SANITIZE_LABELS overrides the ctest label filter, e.g.
-#   VIO_SANITIZE_LABELS= scripts/sanitize.sh --test   (everything).
+# Tests labelled `slow` are left out (see docs/testing.md for which and why)
+# and not built. VIO_SANITIZE_LABELS overrides the ctest label filter, e.g.
+#   VIO_SANITIZE_LABELS= scripts/sanitize.sh   (configure, build and run everything).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build=${VIO_SANITIZE_BUILD:-build-asan}
+labels=${VIO_SANITIZE_LABELS-slow}
+# The suites a label filter leaves out are not built either (the sanitizer
+# build is the longest part of CI): VIO_BUILD_SLOW_TESTS off when "slow" is
+# filtered out.
+slow_tests=ON
+case ",$labels," in *,slow,*) slow_tests=OFF ;; esac
 jobs=${JOBS:-2}
 mode=${1:-all}
 [ $# -gt 0 ] && shift
@@ -34,7 +40,8 @@ configure() {
     -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
-    -DVIO_BUILD_FUZZERS=ON -DVIO_BUILD_BENCHMARKS=OFF "$@"
+    -DVIO_BUILD_FUZZERS=ON -DVIO_BUILD_BENCHMARKS=OFF \
+    -DVIO_BUILD_SLOW_TESTS=$slow_tests "$@"
 }
 
 run_tests() {
@@ -43,7 +50,12 @@ run_tests() {
   export ASAN_SYMBOLIZER_PATH=$symbolizer
   export ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-  local labels=${VIO_SANITIZE_LABELS-slow}
+  if [ "$slow_tests" = ON ] &&
+     grep -q '^VIO_BUILD_SLOW_TESTS:BOOL=OFF' "$build/CMakeCache.txt" 2>/dev/null; then
+    echo "sanitize.sh: $build was configured without the slow suites;" \
+         "run without --test to configure and build them" >&2
+    exit 1
+  fi
   ctest --test-dir "$build" --output-on-failure -j"$jobs" \
     ${labels:+-LE "$labels"}
 }
