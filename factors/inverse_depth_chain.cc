@@ -6,6 +6,30 @@
 #include "geometry/so3.h"
 
 namespace vio {
+namespace {
+
+struct ChainPoints {
+  Eigen::Vector3d h_bi, h_bj, h_c;
+};
+
+// The point along the two-keyframe chain, each step scaled by rho:
+// h_bi = R_b_a f_a + rho t_b_a, h_w = R_w_bi h_bi + rho p_w_bi,
+// h_bj = R_w_bj^T (h_w - rho p_w_bj), h_c = R_c_b (h_bj - rho t_b_c).
+// One body for the constructor and PointInTarget, so a residual-only
+// evaluation gives the bits of a full one.
+ChainPoints TwoKeyframePoints(const Eigen::Vector3d& f_a, double rho,
+                              const Rigid& T_b_a, const Rigid& T_w_bi,
+                              const Rigid& T_w_bj, const Eigen::Matrix3d& R_c_b,
+                              const Eigen::Vector3d& t_b_c) {
+  ChainPoints h;
+  h.h_bi = T_b_a.R * f_a + rho * T_b_a.t;
+  const Eigen::Vector3d h_w = T_w_bi.R * h.h_bi + rho * T_w_bi.t;
+  h.h_bj = T_w_bj.R.transpose() * (h_w - rho * T_w_bj.t);
+  h.h_c = R_c_b * (h.h_bj - rho * t_b_c);
+  return h;
+}
+
+}  // namespace
 
 Rigid Rigid::FromBlock(const double* x) {
   Rigid T;
@@ -27,10 +51,11 @@ InverseDepthChain::InverseDepthChain(const Eigen::Vector3d& f_a, double rho,
   d_hc_d_hbj_ = T_b_c.R.transpose();
   d_hc_d_hw_ = d_hc_d_hbj_ * T_w_bj.R.transpose();
   d_hc_d_hbi_ = d_hc_d_hw_ * T_w_bi.R;
-  h_bi_ = R_b_a_ * f_a_ + rho_ * t_b_a_;
-  const Eigen::Vector3d h_w = T_w_bi.R * h_bi_ + rho_ * T_w_bi.t;
-  h_bj_ = T_w_bj.R.transpose() * (h_w - rho_ * T_w_bj.t);
-  h_c_ = d_hc_d_hbj_ * (h_bj_ - rho_ * t_b_c_);
+  const ChainPoints h =
+      TwoKeyframePoints(f_a_, rho_, T_b_a, T_w_bi, T_w_bj, d_hc_d_hbj_, t_b_c_);
+  h_bi_ = h.h_bi;
+  h_bj_ = h.h_bj;
+  h_c_ = h.h_c;
 }
 
 Eigen::Vector3d InverseDepthChain::PointInTarget(const Eigen::Vector3d& f_a,
@@ -38,13 +63,11 @@ Eigen::Vector3d InverseDepthChain::PointInTarget(const Eigen::Vector3d& f_a,
                                                  const Rigid& T_w_bi,
                                                  const Rigid& T_w_bj,
                                                  const Rigid& T_b_c) {
-  // The constructor's h_bi, h_w, h_bj and h_c, operation for operation
-  // (R_b_c^T materialised as there): d_hc_d_hw and d_hc_d_hbi are skipped.
-  const Eigen::Vector3d h_bi = T_b_a.R * f_a + rho * T_b_a.t;
-  const Eigen::Vector3d h_w = T_w_bi.R * h_bi + rho * T_w_bi.t;
-  const Eigen::Vector3d h_bj = T_w_bj.R.transpose() * (h_w - rho * T_w_bj.t);
-  const Eigen::Matrix3d R_c_b = T_b_c.R.transpose();
-  return R_c_b * (h_bj - rho * T_b_c.t);
+  // The two-keyframe constructor's points, without its rotation products
+  // (R_c_b materialised as there, so the same bits).
+  return TwoKeyframePoints(f_a, rho, T_b_a, T_w_bi, T_w_bj, T_b_c.R.transpose(),
+                           T_b_c.t)
+      .h_c;
 }
 
 InverseDepthChain::InverseDepthChain(const Eigen::Vector3d& f_a, double rho,
