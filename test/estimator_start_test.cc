@@ -93,6 +93,28 @@ TEST(EstimatorStart, MonoStartsInMotionWithTheTrueScaleAndGravity) {
   EXPECT_LT(run.ate_rmse_m, 0.08);
 }
 
+// The hand-held preset (a small ellipse, fast-turning camera): its tracks
+// leave the view within a second, so the reference pair is at most ~0.6 s
+// old and its rotation-compensated parallax ~10-18 px. With the former
+// 20 px threshold this seed never started within 6 s (`too little
+// parallax` at every frame, docs/initialisation.md); the scale checks still
+// guard the start.
+TEST(EstimatorStart, HandHeldMonoStartsWithinTwoSeconds) {
+  SimulatorOptions o = Preset("handheld", 3.0);
+  o.seed = 1000;  // init_benchmark's first hand-held trial
+  const Simulation sim = Simulate(o);
+  const testing::SimReplay run =
+      testing::ReplaySimulation(sim, testing::OptionsFor(sim.options));
+  ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
+  const StartCheck c = CheckFirstStart(sim, run);
+  EXPECT_EQ(c.method, InitMethod::kMono);
+  EXPECT_LE(c.time_s, 2.0);
+  // Measured: 1.70 s, scale -9.7 %, gravity 0.91 deg.
+  EXPECT_LT(std::abs(c.scale_error), 0.15);
+  EXPECT_LT(c.gravity_deg, 1.5);
+  EXPECT_LT(c.gyro_bias, 0.01);
+}
+
 TEST(EstimatorStart, StereoStartsInMotionWithinHalfASecond) {
   const Simulation sim = Simulate(Preset("motion_stereo", 3.0));
   const testing::SimReplay run =

@@ -16,8 +16,14 @@
 // it also replays whole sequences in motion and from rest (the same motion
 // after a 2 s still start) and prints both ATEs.
 //
+// --diagnose prints, per frame until the start, the mono start's verdict and
+// the pairs it could take (init_diagnosis.h). --min-parallax and
+// --min-correspondences override init.mono's two options, to measure them.
+//
 //   init_benchmark [--preset NAME]... [--seeds N] [--seconds S] [--ate]
-//                  [--verbose] [--long-window S] [--max-scale-sigma X]
+//                  [--verbose] [--diagnose] [--long-window S]
+//                  [--max-scale-sigma X] [--min-parallax PX]
+//                  [--min-correspondences N]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
@@ -33,6 +39,7 @@
 #include "dataset/simulator.h"
 #include "estimator/estimator.h"
 #include "estimator/sequence_runner.h"
+#include "test/benchmark/init_diagnosis.h"
 #include "test/testing/sim_replay.h"
 
 namespace vio {
@@ -44,10 +51,14 @@ struct Args {
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
   bool verbose = false;
+  bool diagnose = false;  // per attempt: pairs, parallax, truth
   // init.mono.long_window_s and max_refined_scale_uncertainty (< 0: the
   // defaults), to measure the wait for the scale.
   double long_window_s = -1.0;
   double max_scale_sigma = -1.0;
+  // init.mono.min_parallax_px and min_correspondences (< 0: the defaults).
+  double min_parallax_px = -1.0;
+  int min_correspondences = -1;
 };
 
 EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
@@ -56,6 +67,12 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   if (args.long_window_s > 0.0) o.init.mono.long_window_s = args.long_window_s;
   if (args.max_scale_sigma > 0.0) {
     o.init.mono.max_refined_scale_uncertainty = args.max_scale_sigma;
+  }
+  if (args.min_parallax_px >= 0.0) {
+    o.init.mono.min_parallax_px = args.min_parallax_px;
+  }
+  if (args.min_correspondences > 0) {
+    o.init.mono.min_correspondences = args.min_correspondences;
   }
   return o;
 }
@@ -80,6 +97,12 @@ Args Parse(int argc, char** argv) {
       a.long_window_s = std::stod(value());
     } else if (s == "--max-scale-sigma") {
       a.max_scale_sigma = std::stod(value());
+    } else if (s == "--min-parallax") {
+      a.min_parallax_px = std::stod(value());
+    } else if (s == "--min-correspondences") {
+      a.min_correspondences = std::stoi(value());
+    } else if (s == "--diagnose") {
+      a.diagnose = true;
     } else if (s == "--verbose") {
       a.verbose = true;
     } else {
@@ -127,6 +150,50 @@ double Spread(const std::vector<Eigen::Vector3d>& p) {
   return std::sqrt(s / p.size());
 }
 
+// --diagnose: one line per frame with the mono start's verdict, the pairs
+// (selected frame, newest) the structure from motion could take, and the
+// truth's translation and depth.
+void Diagnose(const Simulation& sim,
+              const testing::PreparedSimulation& prepared,
+              const EstimatorOptions& options, const FeatureFrame& frame,
+              size_t attempts_before, const EstimatorSummary& summary,
+              std::vector<BufferedFrame>* buffer) {
+  const int64_t t_d = std::llround(sim.options.camera.time_offset_s * 1e9);
+  buffer->push_back({frame.t_ns, frame.t_ns + t_d, frame.observations});
+  const MonoInitOptions& m = options.init.mono;
+  const std::vector<int> selected =
+      SelectFrames(*buffer, m.window_s, m.max_frames);
+  if (SpanSeconds(*buffer, selected) < m.min_span_s) return;
+  std::string verdict = summary.starts.empty() ? "?" : "started";
+  for (size_t i = attempts_before; i < summary.init_attempts.size(); ++i) {
+    const InitAttempt& a = summary.init_attempts[i];
+    if (a.method == InitMethod::kMono) {
+      char b[128];
+      std::snprintf(b, sizeof(b), "%s %.3g", InitFailureName(a.reason),
+                    a.value);
+      verdict = b;
+    }
+  }
+  const double focal = prepared.cameras[0].focal_px;
+  const std::vector<diagnosis::PairFigures> pairs = diagnosis::Pairs(
+      sim, *buffer, selected, prepared.cameras[0].T_b_c, focal);
+  std::printf("    t %.2f [%s]\n",
+              1e-9 * static_cast<double>(frame.t_ns - prepared.frames[0].t_ns),
+              verdict.c_str());
+  std::pair<double, double> ages;
+  const double any = diagnosis::BestAnyPair(
+      *buffer, selected, m.min_correspondences, focal, &ages);
+  std::printf("      best of any pair: %.1f px (frames %.2f and %.2f s old)\n",
+              any, ages.first, ages.second);
+  for (const diagnosis::PairFigures& p : pairs) {
+    std::printf(
+        "      pair age %.2f s: shared %3d, parallax kabsch %5.1f px, "
+        "true rotation %5.1f px, baseline %.3f m, depth %.2f m, direction "
+        "error %.1f deg\n",
+        p.age_s, p.shared, p.kabsch_px, p.true_rot_px, p.baseline_m, p.depth_m,
+        p.direction_error_deg);
+  }
+}
 
 struct Trial {
   bool started = false;
@@ -148,6 +215,18 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
                       PreintegrationOptions(), prepared.cameras);
   // Feed until the first start.
   size_t next_imu = 0;
+  std::vector<BufferedFrame> buffer;  // --diagnose: the start's frames
+  if (args.diagnose) {
+    const std::vector<double> lags = {0.25, 0.5, 1.0, 1.5, 2.0};
+    const std::vector<double> alive =
+        diagnosis::Survival(prepared.frames, lags);
+    std::printf("  seed %u: camera-0 features still tracked after",
+                sim_options.seed);
+    for (size_t i = 0; i < lags.size(); ++i) {
+      std::printf(" %.2f s: %.0f %%%s", lags[i], 100 * alive[i],
+                  i + 1 < lags.size() ? "," : "\n");
+    }
+  }
   Trial t;
   for (const FeatureFrame& frame : prepared.frames) {
     while (next_imu < sim.imu.size()) {
@@ -155,7 +234,12 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
       estimator.AddImu(s);
       if (s.t_ns >= frame.t_ns) break;
     }
+    const size_t attempts_before = estimator.summary().init_attempts.size();
     estimator.AddFrame(frame);
+    if (args.diagnose) {
+      Diagnose(sim, prepared, options, frame, attempts_before,
+               estimator.summary(), &buffer);
+    }
     if (!estimator.summary().starts.empty()) break;
   }
   const EstimatorSummary& summary = estimator.summary();
@@ -206,7 +290,7 @@ void StartFigures(const std::string& preset, const Args& args) {
         base.motion.start_phase_s + k * base.motion.lap_period_s / args.seeds;
     o.duration_s = args.seconds;
     const Trial t = RunTrial(o, args);
-    if (args.verbose) {
+    if (args.verbose || args.diagnose) {
       std::printf("  seed %u phase %.2f s: %s", o.seed, o.motion.start_phase_s,
                   t.started ? "started" : "no start");
       if (t.started) {
