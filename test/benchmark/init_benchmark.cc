@@ -117,13 +117,7 @@ Args Parse(int argc, char** argv) {
 struct Distribution {
   std::vector<double> values;
   void Add(double v) { values.push_back(v); }
-  double Quantile(double q) const {
-    if (values.empty()) return NAN;
-    std::vector<double> v = values;
-    std::sort(v.begin(), v.end());
-    const size_t k = static_cast<size_t>(q * (v.size() - 1) + 0.5);
-    return v[std::min(k, v.size() - 1)];
-  }
+  double Quantile(double q) const { return diagnosis::Quantile(values, q); }
   std::string Describe(double scale, const char* unit) const {
     char b[160];
     std::snprintf(b, sizeof(b), "median %.3g, p90 %.3g, max %.3g %s",
