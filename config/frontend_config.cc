@@ -18,6 +18,7 @@ FeatureTrackerOptions ReadTracker(const YamlNode& node) {
   o.min_distance_px = node.Get<double>("min_distance_px");
   o.corner_quality = node.Get<double>("corner_quality");
   o.border_px = node.Get<int>("border_px");
+  o.refill_min_missing = node.Get<int>("refill_min_missing");
   o.klt = ReadKlt(node);
   o.max_forward_backward_px = node.Get<double>("max_forward_backward_px");
   o.fundamental_check = node.Get<bool>("fundamental_check");

@@ -280,7 +280,7 @@ void FeatureTracker::Refill(const cv::Mat& image) {
     ++stats_.tracked;
   }
   const int wanted = options_.max_features - static_cast<int>(points.size());
-  if (wanted > 0) {
+  if (wanted >= options_.refill_min_missing) {
     const std::vector<cv::Point2f> corners = detector_.Detect(
         image, mask, wanted, options_.corner_quality, options_.min_distance_px);
     for (const cv::Point2f& corner : corners) {

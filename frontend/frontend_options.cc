@@ -49,6 +49,10 @@ bool FeatureTrackerOptions::Validate(std::string* message) const {
     return Fail("corner_quality", "in (0, 1)", corner_quality, message);
   }
   if (border_px < 0) return Fail("border_px", ">= 0", border_px, message);
+  if (refill_min_missing < 1 || refill_min_missing > max_features) {
+    return Fail("refill_min_missing", "in [1, max_features]",
+                refill_min_missing, message);
+  }
   if (!klt.Validate("klt_", message)) return false;
   if (!Positive(max_forward_backward_px)) {
     return Fail("max_forward_backward_px", "> 0", max_forward_backward_px,

@@ -31,6 +31,11 @@ struct FeatureTrackerOptions {
   double corner_quality = 0.002;
   // Features closer than this to the image border are dropped [px].
   int border_px = 2;
+  // New corners are looked for only when at least this many of the
+  // max_features tracks are missing (1: whenever one is) [tracks]. Most
+  // frames lose a few tracks and find few corners in the mask's gaps, while
+  // the search costs as much as tracking (docs/frontend.md).
+  int refill_min_missing = 5;
   KltOptions klt;
   // A track survives when tracking it back from the new frame lands within
   // this distance of where it started [px].
@@ -67,7 +72,10 @@ struct FeatureTrackerOptions {
 // Left-to-right matching of a calibrated stereo pair
 // (frontend/stereo_matcher.h).
 struct StereoMatcherOptions {
-  KltOptions klt;
+  // A 15 px window: the matched images are taken at the same instant, so
+  // the patch does not deform as along a track, and it costs half of the
+  // tracker's 21 px window per iteration (docs/frontend.md).
+  KltOptions klt = {15};
   // Equalise the histograms of both images before matching
   // (cv::equalizeHist). The two cameras expose differently (mean grey 145
   // against 130 on V1_01) and LK assumes equal brightness: on the first

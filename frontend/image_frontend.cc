@@ -46,20 +46,27 @@ TrackedFrame ImageFrontend::TrackLeft(int64_t t_ns, const cv::Mat& left) {
   return tracked;
 }
 
-StereoImage ImageFrontend::PrepareRight(const cv::Mat& right) const {
-  if (!matcher_ || right.empty()) return StereoImage();
-  if (!right_clahe_) return matcher_->PrepareRight(right);
+void ImageFrontend::PrepareRight(const cv::Mat& right,
+                                 StereoImage* prepared) const {
+  if (!matcher_ || right.empty()) {
+    prepared->pyramid.clear();
+    return;
+  }
+  if (!right_clahe_) {
+    matcher_->PrepareRight(right, prepared);
+    return;
+  }
   cv::Mat equalised;
   right_clahe_->apply(right, equalised);
-  return matcher_->PrepareRight(equalised);
+  matcher_->PrepareRight(equalised, prepared);
 }
 
 void ImageFrontend::MatchRight(const StereoImage& right,
-                               TrackedFrame* tracked) const {
+                               TrackedFrame* tracked) {
   if (!matcher_ || right.pyramid.empty()) return;
-  const std::vector<FeatureObservation> matches =
-      matcher_->Match(matcher_->PrepareLeft(tracked->left), right,
-                      tracked->frame.observations, &tracked->stats.stereo);
+  matcher_->PrepareLeft(tracked->left, &left_);
+  const std::vector<FeatureObservation> matches = matcher_->Match(
+      left_, right, tracked->frame.observations, &tracked->stats.stereo);
   tracked->frame.observations.insert(tracked->frame.observations.end(),
                                      matches.begin(), matches.end());
   tracked->stats.stereo_matched = true;
@@ -68,7 +75,8 @@ void ImageFrontend::MatchRight(const StereoImage& right,
 FeatureFrame ImageFrontend::Process(int64_t t_ns, const cv::Mat& left,
                                     const cv::Mat& right) {
   TrackedFrame tracked = TrackLeft(t_ns, left);
-  MatchRight(PrepareRight(right), &tracked);
+  PrepareRight(right, &right_);
+  MatchRight(right_, &tracked);
   stats_ = tracked.stats;
   return std::move(tracked.frame);
 }

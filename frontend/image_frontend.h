@@ -49,17 +49,19 @@ class ImageFrontend {
 
   // Process in steps, for a caller that runs them on different threads
   // (tools/image_tracks.h): TrackLeft carries the tracker's state from frame
-  // to frame and must see the frames in order; PrepareRight and MatchRight
-  // are const and may run on other threads meanwhile (MatchRight of frame k
-  // while TrackLeft takes frame k + 1). Process(t, left, right) is
+  // to frame and must see the frames in order; PrepareRight is const and
+  // MatchRight touches only its own buffers, so both may run on other
+  // threads meanwhile (MatchRight of frame k while TrackLeft takes frame
+  // k + 1; MatchRight on one thread at a time). Process(t, left, right) is
   // TrackLeft, PrepareRight, MatchRight, bit for bit.
   TrackedFrame TrackLeft(int64_t t_ns, const cv::Mat& left);
-  // The right image prepared for matching; empty for an empty `right` or in
-  // mono.
-  StereoImage PrepareRight(const cv::Mat& right) const;
+  // The right image prepared for matching into *prepared, reusing its
+  // buffers (StereoImage); left empty for an empty `right` or in mono.
+  void PrepareRight(const cv::Mat& right, StereoImage* prepared) const;
   // Adds the matches of `tracked`'s cam0 features into the prepared right
-  // image (nothing when `right` is empty) and sets tracked->stats.
-  void MatchRight(const StereoImage& right, TrackedFrame* tracked) const;
+  // image (nothing when `right` is empty) and sets tracked->stats. The left
+  // image is prepared into buffers kept from call to call.
+  void MatchRight(const StereoImage& right, TrackedFrame* tracked);
 
   bool stereo() const { return matcher_ != nullptr; }
   const FrontendStats& stats() const { return stats_; }
@@ -70,6 +72,8 @@ class ImageFrontend {
   // CLAHE for the right images (when tracker.clahe): cv::CLAHE keeps
   // buffers, so the right image, prepared on its own thread, has its own.
   cv::Ptr<cv::CLAHE> right_clahe_;
+  StereoImage left_;  // MatchRight's buffers for the prepared left image
+  StereoImage right_;  // Process's buffers for the prepared right image
   FrontendStats stats_;
 };
 

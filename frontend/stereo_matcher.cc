@@ -72,26 +72,38 @@ bool StereoMatcher::TriangulateDepth(const Eigen::Vector2d& xy0,
   return true;
 }
 
-StereoImage StereoMatcher::Prepare(const cv::Mat& image) const {
-  StereoImage prepared;
+void StereoMatcher::Prepare(const cv::Mat& image,
+                            StereoImage* prepared) const {
   if (options_.equalize) {
-    cv::Mat equalised;
-    cv::equalizeHist(image, equalised);
-    prepared.pyramid = BuildKltPyramid(equalised, options_.klt);
+    cv::equalizeHist(image, prepared->equalised);
+    BuildKltPyramid(prepared->equalised, options_.klt, &prepared->pyramid);
   } else {
-    prepared.pyramid = BuildKltPyramid(image, options_.klt);
+    BuildKltPyramid(image, options_.klt, &prepared->pyramid);
   }
-  return prepared;
 }
 
 StereoImage StereoMatcher::PrepareLeft(const cv::Mat& image) const {
-  CheckImage(image, left_, "left");
-  return Prepare(image);
+  StereoImage prepared;
+  PrepareLeft(image, &prepared);
+  return prepared;
 }
 
 StereoImage StereoMatcher::PrepareRight(const cv::Mat& image) const {
+  StereoImage prepared;
+  PrepareRight(image, &prepared);
+  return prepared;
+}
+
+void StereoMatcher::PrepareLeft(const cv::Mat& image,
+                                StereoImage* prepared) const {
+  CheckImage(image, left_, "left");
+  Prepare(image, prepared);
+}
+
+void StereoMatcher::PrepareRight(const cv::Mat& image,
+                                 StereoImage* prepared) const {
   CheckImage(image, right_, "right");
-  return Prepare(image);
+  Prepare(image, prepared);
 }
 
 std::vector<FeatureObservation> StereoMatcher::Match(

@@ -29,8 +29,12 @@ namespace vio {
 // BuildKltPyramid). Built once per image and used by both directions of the
 // match (left -> right and the reverse check), which calcOpticalFlowPyrLK
 // would otherwise rebuild on every call; the match is the same bit for bit.
+// An image passed again to PrepareLeft / PrepareRight is prepared into the
+// buffers it holds, reused when they have the sizes needed (no allocation,
+// and no page faults, from one frame to the next).
 struct StereoImage {
   std::vector<cv::Mat> pyramid;
+  cv::Mat equalised;  // buffer of the equalised image (options.equalize)
 };
 
 // What one StereoMatcher::Match call did with the left features it was given.
@@ -73,6 +77,9 @@ class StereoMatcher {
   // run on different threads at once.
   StereoImage PrepareLeft(const cv::Mat& image) const;
   StereoImage PrepareRight(const cv::Mat& image) const;
+  // The same into *prepared, reusing its buffers (see StereoImage).
+  void PrepareLeft(const cv::Mat& image, StereoImage* prepared) const;
+  void PrepareRight(const cv::Mat& image, StereoImage* prepared) const;
 
   // Distance [px, right image] of the right pixel uv1 to the epipolar line
   // of the left pixel uv0; +infinity when either does not undistort.
@@ -91,7 +98,7 @@ class StereoMatcher {
  private:
   void CheckImage(const cv::Mat& image, const CameraModel& camera,
                   const char* which) const;
-  StereoImage Prepare(const cv::Mat& image) const;
+  void Prepare(const cv::Mat& image, StereoImage* prepared) const;
 
   CameraModel left_;
   CameraModel right_;

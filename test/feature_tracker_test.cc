@@ -111,6 +111,31 @@ TEST_F(WarpedRealFrames, TracksFollowTheRotationHomography) {
   EXPECT_GT(max_tracked, 120) << "most tracks survive a small rotation";
 }
 
+// The rotation carries tracks out of the image every frame. New corners are
+// looked for only once refill_min_missing of max_features are missing; until
+// then the frame keeps what it tracked.
+TEST_F(WarpedRealFrames, RefillWaitsUntilEnoughTracksAreMissing) {
+  FeatureTrackerOptions options;
+  options.refill_min_missing = 15;
+  FeatureTracker tracker{CameraModel(pinhole_), options};
+  int waited = 0, refilled = 0;
+  for (int k = 0; k < 12; ++k) {
+    const size_t n = tracker.Track(Warped(k)).size();
+    const TrackerStats& s = tracker.stats();
+    const int missing = options.max_features - s.tracked;
+    if (missing < options.refill_min_missing) {
+      EXPECT_EQ(s.created, 0) << "frame " << k << ": " << missing
+                              << " missing";
+      EXPECT_EQ(n, static_cast<size_t>(s.tracked)) << "frame " << k;
+      ++waited;
+    } else if (s.created > 0) {
+      ++refilled;
+    }
+  }
+  EXPECT_GT(waited, 0) << "some frames lose fewer than 15 tracks";
+  EXPECT_GT(refilled, 1) << "the first frame and at least one later refill";
+}
+
 TEST_F(WarpedRealFrames, FundamentalCheckRejectsMovedPoints) {
   FeatureTracker tracker{CameraModel(pinhole_), FeatureTrackerOptions()};
   FeatureTrackerOptions options;

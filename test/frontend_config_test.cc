@@ -49,7 +49,8 @@ TEST(FrontendConfig, ShippedFilesLoadAndSayMonoOrStereo) {
   EXPECT_TRUE(defaults.stereo);
   EXPECT_EQ(defaults.tracker.max_features, 150);
   EXPECT_DOUBLE_EQ(defaults.tracker.min_distance_px, 30.0);
-  EXPECT_EQ(defaults.stereo_matcher.klt.window_px, 21);
+  EXPECT_EQ(defaults.stereo_matcher.klt.window_px, 15);
+  EXPECT_EQ(defaults.tracker.klt.window_px, 21);
   EXPECT_FALSE(LoadFrontendOptions(ConfigFile("euroc_mono.yaml")).stereo);
   EXPECT_TRUE(LoadFrontendOptions(ConfigFile("euroc_stereo.yaml")).stereo);
 }
@@ -80,6 +81,10 @@ TEST(FrontendConfig, ReadsEveryKey) {
                                  "fundamental_baseline_frames: 0"))
                 .tracker.fundamental_baseline_frames,
             0);
+  EXPECT_EQ(ReadText(DefaultWith("refill_min_missing: 5",
+                                 "refill_min_missing: 12"))
+                .tracker.refill_min_missing,
+            12);
 }
 
 TEST(FrontendConfig, ShippedFilesEqualTheBuiltInTracker) {
@@ -93,6 +98,7 @@ TEST(FrontendConfig, ShippedFilesEqualTheBuiltInTracker) {
     EXPECT_EQ(o.anchor_min_correlation, d.anchor_min_correlation) << name;
     EXPECT_EQ(o.fundamental_baseline_frames, d.fundamental_baseline_frames)
         << name;
+    EXPECT_EQ(o.refill_min_missing, d.refill_min_missing) << name;
   }
 }
 

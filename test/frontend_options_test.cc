@@ -37,6 +37,10 @@ TEST(FrontendOptions, RejectsEachOutOfRangeTrackerField) {
   };
   invalid([](FeatureTrackerOptions* o) { o->max_features = 0; },
           "max_features");
+  invalid([](FeatureTrackerOptions* o) { o->refill_min_missing = 0; },
+          "refill_min_missing");
+  invalid([](FeatureTrackerOptions* o) { o->refill_min_missing = 151; },
+          "refill_min_missing");
   invalid([](FeatureTrackerOptions* o) { o->min_distance_px = -1; },
           "min_distance_px");
   invalid([](FeatureTrackerOptions* o) { o->corner_quality = 1.5; },

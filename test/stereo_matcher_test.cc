@@ -195,5 +195,33 @@ TEST_F(RealStereoPairs, RightObservationsKeepTheLeftIds) {
                std::invalid_argument);
 }
 
+// Images prepared into buffers that held another pair (the replay reuses
+// them from frame to frame) match exactly as freshly prepared ones.
+TEST_F(RealStereoPairs, ReusedBuffersMatchAsFreshOnes) {
+  const StereoMatcher matcher{CameraModel(cam0_), CameraModel(cam1_),
+                              StereoMatcherOptions()};
+  StereoImage left, right;
+  matcher.PrepareLeft(testing::V101Image(0, 0), &left);
+  matcher.PrepareRight(testing::V101Image(1, 0), &right);
+  const cv::Mat left_image = testing::V101Image(0, 20);
+  const cv::Mat right_image = testing::V101Image(1, 20);
+  const auto features = LeftFeatures(left_image);
+  const uchar* buffer = left.pyramid[0].datastart;
+  matcher.PrepareLeft(left_image, &left);
+  matcher.PrepareRight(right_image, &right);
+  EXPECT_EQ(left.pyramid[0].datastart, buffer) << "the buffer was reused";
+  StereoStats reused_stats, fresh_stats;
+  const auto reused = matcher.Match(left, right, features, &reused_stats);
+  const auto fresh =
+      matcher.Match(left_image, right_image, features, &fresh_stats);
+  ASSERT_GT(fresh.size(), 50u);
+  ASSERT_EQ(reused.size(), fresh.size());
+  for (size_t i = 0; i < fresh.size(); ++i) {
+    EXPECT_EQ(reused[i].feature_id, fresh[i].feature_id);
+    EXPECT_EQ(reused[i].uv, fresh[i].uv) << "match " << i;
+  }
+  EXPECT_EQ(reused_stats.lost_reverse, fresh_stats.lost_reverse);
+}
+
 }  // namespace
 }  // namespace vio

@@ -4,6 +4,7 @@
 #include <ctime>
 #include <exception>
 #include <map>
+#include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <sstream>
@@ -65,6 +66,26 @@ struct EurocImageStream::Work {
   double track_cpu_seconds = 0.0;
 };
 
+// The buffers of the prepared right images (two LK pyramids with their
+// derivatives, about 2.6 MB a frame) go back from Finish to Read, so they
+// are allocated once instead of mapped and faulted in for every frame.
+struct EurocImageStream::Spares {
+  std::mutex mutex;
+  std::vector<StereoImage> images;
+
+  StereoImage Take() {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (images.empty()) return StereoImage();
+    StereoImage image = std::move(images.back());
+    images.pop_back();
+    return image;
+  }
+  void Give(StereoImage&& image) {
+    std::lock_guard<std::mutex> lock(mutex);
+    images.push_back(std::move(image));
+  }
+};
+
 struct EurocImageStream::Threads {
   BoundedQueue<Work> read{kStageQueueFrames};
   BoundedQueue<Work> tracked{kStageQueueFrames};
@@ -75,7 +96,9 @@ struct EurocImageStream::Threads {
 EurocImageStream::EurocImageStream(const EurocSequence& sequence,
                                    const FrontendOptions& options,
                                    bool with_observations, bool threaded)
-    : sequence_(sequence), threaded_(threaded) {
+    : sequence_(sequence),
+      spares_(std::make_unique<Spares>()),
+      threaded_(threaded) {
   const std::vector<EurocCamera>& cameras = sequence.data.cameras;
   const int needed = options.stereo ? 2 : 1;
   if (static_cast<int>(cameras.size()) < needed ||
@@ -152,7 +175,8 @@ bool EurocImageStream::Read(Work* work) {
     // Preparing the right image is the frontend's work: timed as tracking.
     const Clock::time_point prepare = Clock::now();
     const std::clock_t cpu_start = std::clock();
-    work->right = frontend_->PrepareRight(right);
+    work->right = spares_->Take();
+    frontend_->PrepareRight(right, &work->right);
     work->track_cpu_seconds +=
         static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     work->track_seconds += SecondsSince(prepare);
@@ -192,7 +216,7 @@ void EurocImageStream::Finish(Work* work, FeatureFrame* frame) {
   const Clock::time_point start = Clock::now();
   const std::clock_t cpu_start = std::clock();
   frontend_->MatchRight(work->right, &work->tracked);
-  work->right = StereoImage();
+  spares_->Give(std::move(work->right));
   work->track_cpu_seconds +=
       static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   work->track_seconds += SecondsSince(start);

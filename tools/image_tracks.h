@@ -93,6 +93,8 @@ class EurocImageStream {
 
   struct Work;     // one frame between the steps
   struct Threads;  // the reading and tracking threads and their queues
+  struct Spares;   // prepared right images' buffers, from Finish to Read
+  std::unique_ptr<Spares> spares_;
   // The steps (see the class comment). Read returns false at the end, with
   // the last counts in *work.
   bool Read(Work* work);

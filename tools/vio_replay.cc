@@ -11,6 +11,7 @@
 #include <ctime>
 #include <exception>
 #include <filesystem>
+#include <opencv2/core/utility.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -247,6 +248,11 @@ ImageReplay ReplayImages(const EurocSequence& seq,
                          const PipelineOptions& pipeline, bool keep_tracks,
                          Estimator* estimator, ImageTrackingSummary* summary,
                          ObservationBuilderSummary* removed) {
+  // Pipelined, the stages are the parallelism: OpenCV's own pool (TBB here)
+  // splitting each LK call over more threads only oversubscribes the cores.
+  // One thread runs OpenCV's calls in the caller, with the same results (its
+  // parallel loops split independent points and rows).
+  if (!pipeline.sequential) cv::setNumThreads(1);
   EurocImageStream stream(seq, frontend, true, !pipeline.sequential);
   StreamingRunner runner(estimator, &seq.data.imu);
   const std::vector<FeatureFrame> expected = ExpectedImageFrames(seq);
