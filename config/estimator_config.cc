@@ -77,6 +77,9 @@ void ReadInit(const YamlNode& n, InitOptions* o) {
   o->mono.long_window_s = m.Get<double>("long_window_s");
   o->mono.max_refined_scale_uncertainty =
       m.Get<double>("max_refined_scale_uncertainty");
+  o->mono.gyro_aided = m.Get<bool>("gyro_aided");
+  o->mono.gyro_min_tracks = m.Get<int>("gyro_min_tracks");
+  o->mono.gyro_min_parallax_px = m.Get<double>("gyro_min_parallax_px");
   const YamlNode s = n.Child("stereo");
   o->stereo.window_s = s.Get<double>("window_s");
   o->stereo.min_span_s = s.Get<double>("min_span_s");

@@ -22,6 +22,10 @@ Initialization::Initialization(const EstimatorOptions& options,
   } else {
     mono_ = std::make_unique<MonoInitializer>(options, T_b_c[0], focal_px,
                                               noise, preintegration);
+    if (options.init.mono.gyro_aided) {
+      gyro_aided_ = std::make_unique<GyroAidedInitializer>(
+          options, T_b_c[0], focal_px, noise, preintegration);
+    }
   }
 }
 
@@ -117,6 +121,10 @@ bool Initialization::TryInMotion(const std::vector<ImuSample>& imu,
                                 : mono_->TryInitialize(frames_, imu, window);
   if (a.reason == InitFailure::kNone) return true;
   log->push_back(a);
+  if (!gyro_aided_) return false;
+  const InitAttempt b = gyro_aided_->TryInitialize(frames_, imu, window);
+  if (b.reason == InitFailure::kNone) return true;
+  log->push_back(b);
   return false;
 }
 

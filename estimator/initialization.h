@@ -11,6 +11,8 @@
 //           in-motion starts cannot work), then the in-motion one of the
 //           configuration (stereo with use_stereo, else mono): whichever is
 //           ready first and passes its checks.
+// With init.mono.gyro_aided, a failed mono attempt is followed at the same
+// frame by the gyroscope-aided one (gyro_aided_initializer.h).
 // Every failed attempt is appended to the log as data (init_attempt.h): at
 // most one per method and frame.
 
@@ -19,6 +21,7 @@
 #include <vector>
 
 #include "estimator/estimator_options.h"
+#include "estimator/gyro_aided_initializer.h"
 #include "estimator/init_attempt.h"
 #include "estimator/initial_window.h"
 #include "estimator/mono_initializer.h"
@@ -64,6 +67,7 @@ class Initialization {
   StaticInitializer static_;
   std::unique_ptr<MonoInitializer> mono_;
   std::unique_ptr<StereoInitializer> stereo_;
+  std::unique_ptr<GyroAidedInitializer> gyro_aided_;  // mono's fallback
   std::vector<BufferedFrame> frames_;
 };
 

@@ -16,6 +16,8 @@ const char* InitMethodName(InitMethod method) {
       return "mono";
     case InitMethod::kStereo:
       return "stereo";
+    case InitMethod::kGyroAided:
+      return "gyro-aided";
   }
   return "?";
 }
@@ -59,6 +61,8 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
   r.Positive("init.mono.max_scale_uncertainty", mono.max_scale_uncertainty);
   r.Positive("init.mono.max_refined_scale_uncertainty",
              mono.max_refined_scale_uncertainty);
+  r.AtLeast("init.mono.gyro_min_tracks", mono.gyro_min_tracks, 8);
+  r.Positive("init.mono.gyro_min_parallax_px", mono.gyro_min_parallax_px);
   r.Positive("init.stereo.window_s", stereo.window_s);
   r.Positive("init.stereo.min_span_s", stereo.min_span_s);
   r.Require(stereo.min_span_s <= stereo.window_s, "init.stereo.min_span_s",

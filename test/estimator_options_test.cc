@@ -31,6 +31,10 @@ TEST(InitMethod, NamesParseBack) {
     EXPECT_TRUE(ParseInitMethod(InitMethodName(m), &parsed));
     EXPECT_EQ(parsed, m);
   }
+  // The gyroscope-aided start is named, but not a choice of init.method.
+  InitMethod g = InitMethod::kMono;
+  EXPECT_STREQ(InitMethodName(InitMethod::kGyroAided), "gyro-aided");
+  EXPECT_FALSE(ParseInitMethod("gyro-aided", &g));
   InitMethod m = InitMethod::kMono;
   EXPECT_FALSE(ParseInitMethod("dynamic", &m));
   EXPECT_EQ(m, InitMethod::kMono);
@@ -72,6 +76,10 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
        "init.mono.min_span_s must be <= init.mono.window_s"},
       {[](EstimatorOptions* o) { o->init.mono.min_inliers = 5; },
        "init.mono.min_inliers must be >= 8 (got 5)"},
+      {[](EstimatorOptions* o) { o->init.mono.gyro_min_tracks = 7; },
+       "init.mono.gyro_min_tracks must be >= 8 (got 7)"},
+      {[](EstimatorOptions* o) { o->init.mono.gyro_min_parallax_px = 0.0; },
+       "init.mono.gyro_min_parallax_px must be > 0"},
       {[](EstimatorOptions* o) { o->init.stereo.min_span_s = 0.0; },
        "init.stereo.min_span_s must be > 0"},
       {[](EstimatorOptions* o) { o->init.refine_iterations = -1; },

@@ -17,13 +17,14 @@
 // after a 2 s still start) and prints both ATEs.
 //
 // --diagnose prints, per frame until the start, the mono start's verdict and
-// the pairs it could take (init_diagnosis.h). --min-parallax and
-// --min-correspondences override init.mono's two options, to measure them.
+// the pairs it could take (init_diagnosis.h). --min-parallax,
+// --min-correspondences and --gyro-aided override init.mono's options, to
+// measure them.
 //
 //   init_benchmark [--preset NAME]... [--seeds N] [--seconds S] [--ate]
 //                  [--verbose] [--diagnose] [--long-window S]
 //                  [--max-scale-sigma X] [--min-parallax PX]
-//                  [--min-correspondences N]
+//                  [--min-correspondences N] [--gyro-aided 0|1]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
@@ -59,6 +60,8 @@ struct Args {
   // init.mono.min_parallax_px and min_correspondences (< 0: the defaults).
   double min_parallax_px = -1.0;
   int min_correspondences = -1;
+  // init.mono.gyro_aided: 0 off, 1 on, < 0 the default.
+  int gyro_aided = -1;
 };
 
 EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
@@ -74,6 +77,7 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   if (args.min_correspondences > 0) {
     o.init.mono.min_correspondences = args.min_correspondences;
   }
+  if (args.gyro_aided >= 0) o.init.mono.gyro_aided = args.gyro_aided > 0;
   return o;
 }
 
@@ -101,6 +105,8 @@ Args Parse(int argc, char** argv) {
       a.min_parallax_px = std::stod(value());
     } else if (s == "--min-correspondences") {
       a.min_correspondences = std::stoi(value());
+    } else if (s == "--gyro-aided") {
+      a.gyro_aided = std::stoi(value());
     } else if (s == "--diagnose") {
       a.diagnose = true;
     } else if (s == "--verbose") {
