@@ -129,13 +129,8 @@ InitAttempt GyroAidedInitializer::TryInitialize(
     InitialWindow* window) const {
   const MonoInitOptions& m = options_.init.mono;
   auto failed = [&](InitFailure reason, double value, double limit) {
-    InitAttempt a;
-    a.t_ns = frames.empty() ? 0 : frames.back().t_ns;
-    a.method = InitMethod::kGyroAided;
-    a.reason = reason;
-    a.value = value;
-    a.limit = limit;
-    return a;
+    return RefusedAttempt(frames.empty() ? 0 : frames.back().t_ns,
+                          InitMethod::kGyroAided, reason, value, limit);
   };
   // Every frame of the window constrains; the selected ones are handed over.
   const std::vector<int> all = SelectFrames(frames, m.window_s, INT_MAX);

@@ -49,6 +49,20 @@ struct InitAttempt {
   double limit = 0.0;  // the limit it broke
 };
 
+// A refused attempt at the frame stamped t_ns: what every initialiser
+// returns when one of its checks fails.
+inline InitAttempt RefusedAttempt(int64_t t_ns, InitMethod method,
+                                  InitFailure reason, double value,
+                                  double limit) {
+  InitAttempt a;
+  a.t_ns = t_ns;
+  a.method = method;
+  a.reason = reason;
+  a.value = value;
+  a.limit = limit;
+  return a;
+}
+
 // "mono: too little parallax (12.3 < 25)".
 std::string DescribeInitAttempt(const InitAttempt& attempt);
 

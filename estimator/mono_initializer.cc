@@ -68,13 +68,8 @@ InitAttempt MonoInitializer::TryWindow(const std::vector<BufferedFrame>& frames,
                                        InitialWindow* window) const {
   const MonoInitOptions& m = options_.init.mono;
   auto failed = [&](InitFailure reason, double value, double limit) {
-    InitAttempt a;
-    a.t_ns = frames.empty() ? 0 : frames.back().t_ns;
-    a.method = InitMethod::kMono;
-    a.reason = reason;
-    a.value = value;
-    a.limit = limit;
-    return a;
+    return RefusedAttempt(frames.empty() ? 0 : frames.back().t_ns,
+                          InitMethod::kMono, reason, value, limit);
   };
   const std::vector<int> selected =
       SelectFrames(frames, window_s, m.max_frames);

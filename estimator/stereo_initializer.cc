@@ -36,13 +36,8 @@ InitAttempt StereoInitializer::TryInitialize(
     InitialWindow* window) const {
   const StereoInitOptions& s = options_.init.stereo;
   auto failed = [&](InitFailure reason, double value, double limit) {
-    InitAttempt a;
-    a.t_ns = frames.empty() ? 0 : frames.back().t_ns;
-    a.method = InitMethod::kStereo;
-    a.reason = reason;
-    a.value = value;
-    a.limit = limit;
-    return a;
+    return RefusedAttempt(frames.empty() ? 0 : frames.back().t_ns,
+                          InitMethod::kStereo, reason, value, limit);
   };
   const std::vector<int> selected =
       SelectFrames(frames, s.window_s, options_.window_size + 1);
