@@ -144,37 +144,41 @@ ImuPreintegration::ImuPreintegration(std::vector<ImuSample> interval_samples,
 }
 
 void ImuPreintegration::Integrate() {
-  PreintegratedImu& r = result_;
-  r.t0_ns = samples_.front().t_ns;
-  r.t1_ns = samples_.back().t_ns;
-  r.sum_dt = 1e-9 * static_cast<double>(r.t1_ns - r.t0_ns);
-  r.delta = ImuDelta();
-  r.covariance.setZero();
+  result_.delta = ImuDelta();
+  running_covariance_.setZero();
   // d x / d [b_a, b_g]. The biases are part of the error state and constant
   // through F's identity bias block, so to first order
   // x_N = F_{N-1} ... F_0 x_0 and the bias Jacobians are the bias columns of
   // that product, started from d x_0 / d b = [0; I].
-  Eigen::Matrix<double, 15, 6> d_x_d_b = Eigen::Matrix<double, 15, 6>::Zero();
-  d_x_d_b.bottomRows<6>().setIdentity();
+  d_x_d_b_.setZero();
+  d_x_d_b_.bottomRows<6>().setIdentity();
+  Propagate(0);
+}
+
+void ImuPreintegration::Propagate(size_t from) {
+  PreintegratedImu& r = result_;
+  r.t0_ns = samples_.front().t_ns;
+  r.t1_ns = samples_.back().t_ns;
+  r.sum_dt = 1e-9 * static_cast<double>(r.t1_ns - r.t0_ns);
   Matrix15d F;
   Matrix15x18d G;
-  for (size_t k = 0; k + 1 < samples_.size(); ++k) {
+  for (size_t k = from; k + 1 < samples_.size(); ++k) {
     const double dt =
         1e-9 * static_cast<double>(samples_[k + 1].t_ns - samples_[k].t_ns);
     r.delta = MidpointStep(r.delta, samples_[k], samples_[k + 1], r.lin_b_a,
                            r.lin_b_g, &F, &G);
-    r.covariance =
-        F * r.covariance * F.transpose() +
+    running_covariance_ =
+        F * running_covariance_ * F.transpose() +
         G * StepNoiseVariances(noise_, dt).asDiagonal() * G.transpose();
-    d_x_d_b = F * d_x_d_b;
+    d_x_d_b_ = F * d_x_d_b_;
   }
   // Symmetric up to rounding; make it exactly so for the Cholesky factor.
-  r.covariance = 0.5 * (r.covariance + r.covariance.transpose()).eval();
-  r.d_dp_d_ba = d_x_d_b.block<3, 3>(kImuP, 0);
-  r.d_dp_d_bg = d_x_d_b.block<3, 3>(kImuP, 3);
-  r.d_dq_d_bg = d_x_d_b.block<3, 3>(kImuR, 3);
-  r.d_dv_d_ba = d_x_d_b.block<3, 3>(kImuV, 0);
-  r.d_dv_d_bg = d_x_d_b.block<3, 3>(kImuV, 3);
+  r.covariance = 0.5 * (running_covariance_ + running_covariance_.transpose());
+  r.d_dp_d_ba = d_x_d_b_.block<3, 3>(kImuP, 0);
+  r.d_dp_d_bg = d_x_d_b_.block<3, 3>(kImuP, 3);
+  r.d_dq_d_bg = d_x_d_b_.block<3, 3>(kImuR, 3);
+  r.d_dv_d_ba = d_x_d_b_.block<3, 3>(kImuV, 0);
+  r.d_dv_d_bg = d_x_d_b_.block<3, 3>(kImuV, 3);
 }
 
 ImuPreintegration ImuPreintegration::Merge(const ImuPreintegration& first,
@@ -185,12 +189,14 @@ ImuPreintegration ImuPreintegration::Merge(const ImuPreintegration& first,
                    Interval(second.t0_ns(), second.t1_ns()) +
                    ": the first must end where the second starts");
   }
-  std::vector<ImuSample> samples = first.samples_;
-  // Both hold the sample at the shared stamp; keep one.
-  samples.insert(samples.end(), second.samples_.begin() + 1,
-                 second.samples_.end());
-  return ImuPreintegration(std::move(samples), first.lin_b_a(), first.lin_b_g(),
-                           first.noise_, first.options_);
+  // Both hold the sample at the shared stamp; keep first's, and go on from
+  // it with first's running state.
+  ImuPreintegration merged(first);
+  const size_t from = merged.samples_.size() - 1;
+  merged.samples_.insert(merged.samples_.end(), second.samples_.begin() + 1,
+                         second.samples_.end());
+  merged.Propagate(from);
+  return merged;
 }
 
 void ImuPreintegration::Repropagate(const Eigen::Vector3d& b_a,

@@ -71,9 +71,13 @@ class ImuPreintegration {
                     const ImuNoise& noise,
                     const PreintegrationOptions& options);
 
-  // The preintegration of [first.t0, second.t1], re-integrated from both
-  // intervals' samples with first's linearisation biases, noise and options
-  // (for dropping the keyframe between them). Throws ImuError unless
+  // The preintegration of [first.t0, second.t1] over both intervals' samples
+  // with first's linearisation biases, noise and options (for dropping the
+  // keyframe between them). It continues first's integration through
+  // second's samples instead of starting again from t0, so a keyframe
+  // interval that keeps absorbing frames costs its new samples only; the
+  // result is bit for bit that of integrating the joined samples from the
+  // start (Repropagate with the same biases). Throws ImuError unless
   // first.t1_ns() == second.t0_ns().
   static ImuPreintegration Merge(const ImuPreintegration& first,
                                  const ImuPreintegration& second);
@@ -119,12 +123,19 @@ class ImuPreintegration {
                     const ImuNoise& noise,
                     const PreintegrationOptions& options);
 
+  // Integrate: from the first sample; Propagate: continues the running
+  // state below from samples_[from] to the end and refreshes result_.
   void Integrate();
+  void Propagate(size_t from);
 
   std::vector<ImuSample> samples_;
   ImuNoise noise_;
   PreintegrationOptions options_;
   PreintegratedImu result_;
+  // The running state Propagate continues from: the covariance before the
+  // final symmetrisation and d x / d [b_a, b_g] (result_ keeps its blocks).
+  Matrix15d running_covariance_ = Matrix15d::Zero();
+  Eigen::Matrix<double, 15, 6> d_x_d_b_ = Eigen::Matrix<double, 15, 6>::Zero();
 };
 
 // The samples of [t0_ns, t1_ns] with interpolated ends, after checking the

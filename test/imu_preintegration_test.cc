@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <vector>
 
 #include "geometry/so3.h"
@@ -216,6 +217,41 @@ TEST_F(ImuPreintegrationOnTrajectory, MergeAtASampleEqualsTheJointInterval) {
   EXPECT_TRUE(merged.covariance().isApprox(joint.covariance(), 1e-12));
   EXPECT_TRUE(
       merged.result().d_dp_d_bg.isApprox(joint.result().d_dp_d_bg, 1e-12));
+}
+
+// Merge continues the first interval's integration instead of starting again
+// from t0: a chain of merges (a keyframe interval absorbing frame after frame,
+// boundaries on and between samples, the later intervals linearised at other
+// biases) must equal, bit for bit, integrating the joined samples from the
+// start with the first interval's biases (Repropagate at the same biases).
+TEST_F(ImuPreintegrationOnTrajectory, MergeEqualsIntegratingFromTheStart) {
+  const int64_t cuts[] = {t0_ns_,    400000000, 447500000,
+                          500000000, 641250000, t1_ns_};
+  ImuPreintegration merged = Integrate(cuts[0], cuts[1], kBa, kBg);
+  for (size_t k = 1; k + 1 < std::size(cuts); ++k) {
+    merged = ImuPreintegration::Merge(
+        merged, Integrate(cuts[k], cuts[k + 1],
+                          kBa + Eigen::Vector3d::Constant(0.05 * k), kBg));
+  }
+  ImuPreintegration fresh = merged;
+  fresh.Repropagate(merged.lin_b_a(), merged.lin_b_g());
+  EXPECT_EQ(merged.t0_ns(), t0_ns_);
+  EXPECT_EQ(merged.t1_ns(), t1_ns_);
+  EXPECT_EQ(merged.lin_b_a(), kBa);
+  EXPECT_EQ(merged.delta().p, fresh.delta().p);
+  EXPECT_EQ(merged.delta().v, fresh.delta().v);
+  EXPECT_EQ(merged.delta().q.coeffs(), fresh.delta().q.coeffs());
+  EXPECT_EQ(merged.covariance(), fresh.covariance());
+  EXPECT_EQ(merged.result().d_dp_d_ba, fresh.result().d_dp_d_ba);
+  EXPECT_EQ(merged.result().d_dp_d_bg, fresh.result().d_dp_d_bg);
+  EXPECT_EQ(merged.result().d_dq_d_bg, fresh.result().d_dq_d_bg);
+  EXPECT_EQ(merged.result().d_dv_d_ba, fresh.result().d_dv_d_ba);
+  EXPECT_EQ(merged.result().d_dv_d_bg, fresh.result().d_dv_d_bg);
+  // And a merged interval re-linearised later is a plain interval again.
+  merged.Repropagate(kBa + Eigen::Vector3d::Constant(0.2), kBg);
+  fresh.Repropagate(kBa + Eigen::Vector3d::Constant(0.2), kBg);
+  EXPECT_EQ(merged.covariance(), fresh.covariance());
+  EXPECT_EQ(merged.delta().p, fresh.delta().p);
 }
 
 TEST_F(ImuPreintegrationOnTrajectory,
