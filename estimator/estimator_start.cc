@@ -251,7 +251,7 @@ InitFailure Estimator::RefineStart(InitMethod method,
       RelativeSpreadSigma(problem.CeresProblem().get(), poses);
   // The gyroscope-aided start holds b_a at zero and its own covariance
   // leaves b_a out, so its scale sigma is no guard (measured 0.7-2 % against
-  // errors of 5-73 %): the adjusted window's sigma takes its place, and the
+  // errors of up to 73 %): the adjusted window's sigma takes its place, and the
   // adjustment may move the start's scale by at most so many of it (a
   // larger move says the scale rests on the accelerometer bias;
   // docs/initialisation.md has the trials).

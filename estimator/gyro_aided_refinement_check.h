@@ -4,7 +4,7 @@
 // The checks on the joint adjustment of a gyroscope-aided start
 // (gyro_aided_initializer.h), which holds the accelerometer bias at zero:
 // its own scale covariance leaves b_a out and claims 0.7-2 %, against errors
-// of 5-73 % measured on the hand-held and motion_mono presets, so it guards
+// of up to 73 % measured on the hand-held and motion_mono presets, so it guards
 // nothing. The joint adjustment frees b_a (state_prior's sigma) and its
 // covariance (scale_uncertainty.h) is the honest figure; two refusals use it:
 //   - the adjusted window's relative scale sigma above
