@@ -80,6 +80,8 @@ void ReadInit(const YamlNode& n, InitOptions* o) {
   o->mono.gyro_aided = m.Get<bool>("gyro_aided");
   o->mono.gyro_min_tracks = m.Get<int>("gyro_min_tracks");
   o->mono.gyro_min_parallax_px = m.Get<double>("gyro_min_parallax_px");
+  o->mono.gyro_max_refine_change_sigmas =
+      m.Get<double>("gyro_max_refine_change_sigmas");
   const YamlNode s = n.Child("stereo");
   o->stereo.window_s = s.Get<double>("window_s");
   o->stereo.min_span_s = s.Get<double>("min_span_s");

@@ -369,9 +369,10 @@ bool RefineOnReprojection(const GyroAidedProblem& problem,
     }
     x = x_new;
   }
+  // The residual is needed for the covariance's sigma^2 whether or not the
+  // caller wants it (without it the covariance was zero).
   std::vector<double> stacked;
-  ReprojectionRows(problem, cameras, x, depths, out,
-                   residual != nullptr ? &stacked : nullptr);
+  ReprojectionRows(problem, cameras, x, depths, out, &stacked);
   out->v_0 = x.segment<3>(kV);
   out->g = x.segment<3>(kG);
   out->b_a = x.segment<3>(kBa);

@@ -63,6 +63,8 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
              mono.max_refined_scale_uncertainty);
   r.AtLeast("init.mono.gyro_min_tracks", mono.gyro_min_tracks, 8);
   r.Positive("init.mono.gyro_min_parallax_px", mono.gyro_min_parallax_px);
+  r.Positive("init.mono.gyro_max_refine_change_sigmas",
+             mono.gyro_max_refine_change_sigmas);
   r.Positive("init.stereo.window_s", stereo.window_s);
   r.Positive("init.stereo.min_span_s", stereo.min_span_s);
   r.Require(stereo.min_span_s <= stereo.window_s, "init.stereo.min_span_s",

@@ -81,7 +81,9 @@ struct MonoInitOptions {
   // scale-uncertainty, gravity and speed limits as above, then the joint
   // adjustment's.
   // Off: measured, it starts 95 % of the hand-held runs within 2 s but
-  // makes the worst start of motion_mono and hand-held worse
+  // makes the worst start of motion_mono and hand-held worse; with the
+  // checks of gyro_max_refine_change_sigmas the worst is no worse, but 85 %
+  // start within 2 s and two of five hand-held runs end 18 % worse
   // (docs/initialisation.md).
   bool gyro_aided = false;
   int gyro_min_tracks = 30;  // tracks seen in two frames, and inliers [-]
@@ -89,6 +91,12 @@ struct MonoInitOptions {
   // first sighting left by the fitted rotation; 1 px of feature noise alone
   // leaves ~1.7 px [px].
   double gyro_min_parallax_px = 4.0;
+  // The joint adjustment after a gyroscope-aided start may change the
+  // window's scale (path length) by at most this many of the adjusted
+  // window's relative scale sigma, in log terms: |log(1 + change)| <= k
+  // sigma; that sigma itself must be within max_scale_uncertainty
+  // (gyro_aided_refinement_check.h) [-].
+  double gyro_max_refine_change_sigmas = 3.0;
 };
 
 // Stereo start in motion: depths from the first stereo pair, later frames by

@@ -88,6 +88,8 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.init.mono.gyro_aided, d.init.mono.gyro_aided);
   EXPECT_EQ(o.init.mono.gyro_min_tracks, d.init.mono.gyro_min_tracks);
   EXPECT_EQ(o.init.mono.gyro_min_parallax_px, d.init.mono.gyro_min_parallax_px);
+  EXPECT_EQ(o.init.mono.gyro_max_refine_change_sigmas,
+            d.init.mono.gyro_max_refine_change_sigmas);
   EXPECT_EQ(o.init.stereo.window_s, d.init.stereo.window_s);
   EXPECT_EQ(o.init.stereo.min_span_s, d.init.stereo.min_span_s);
   EXPECT_EQ(o.init.stereo.min_stereo_points, d.init.stereo.min_stereo_points);

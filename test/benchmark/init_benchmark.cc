@@ -18,13 +18,14 @@
 //
 // --diagnose prints, per frame until the start, the mono start's verdict and
 // the pairs it could take (init_diagnosis.h). --min-parallax,
-// --min-correspondences and --gyro-aided override init.mono's options, to
-// measure them.
+// --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
+// init.mono's options, to measure them.
 //
 //   init_benchmark [--preset NAME]... [--seeds N] [--seconds S] [--ate]
 //                  [--verbose] [--diagnose] [--long-window S]
 //                  [--max-scale-sigma X] [--min-parallax PX]
 //                  [--min-correspondences N] [--gyro-aided 0|1]
+//                  [--gyro-max-change-sigmas K]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
@@ -62,6 +63,8 @@ struct Args {
   int min_correspondences = -1;
   // init.mono.gyro_aided: 0 off, 1 on, < 0 the default.
   int gyro_aided = -1;
+  // init.mono.gyro_max_refine_change_sigmas (< 0: the default).
+  double gyro_max_change_sigmas = -1.0;
 };
 
 EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
@@ -78,6 +81,9 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
     o.init.mono.min_correspondences = args.min_correspondences;
   }
   if (args.gyro_aided >= 0) o.init.mono.gyro_aided = args.gyro_aided > 0;
+  if (args.gyro_max_change_sigmas > 0.0) {
+    o.init.mono.gyro_max_refine_change_sigmas = args.gyro_max_change_sigmas;
+  }
   return o;
 }
 
@@ -107,6 +113,8 @@ Args Parse(int argc, char** argv) {
       a.min_correspondences = std::stoi(value());
     } else if (s == "--gyro-aided") {
       a.gyro_aided = std::stoi(value());
+    } else if (s == "--gyro-max-change-sigmas") {
+      a.gyro_max_change_sigmas = std::stod(value());
     } else if (s == "--diagnose") {
       a.diagnose = true;
     } else if (s == "--verbose") {
@@ -203,6 +211,8 @@ struct Trial {
   double gravity_deg = 0.0;
   double gyro_bias = 0.0;
   double scale_sigma = -1.0;  // predicted by the joint adjustment
+  double own_sigma = -1.0;    // the initialiser's own (before it)
+  double accel_bias = 0.0;    // |b_a - b_a true| at the newest frame
   InitMethod method = InitMethod::kAuto;
   std::string failures;
 };
@@ -270,6 +280,8 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
       std::atan2(z_est.cross(z_true).norm(), z_est.dot(z_true)) * 180.0 / M_PI;
   t.gyro_bias = (newest.b_g - gt.b_g).norm();
   t.scale_sigma = start.diagnostics.refined_scale_sigma;
+  t.own_sigma = start.diagnostics.scale_uncertainty;
+  t.accel_bias = (newest.b_a - gt.b_a).norm();
   if (!summary.init_attempts.empty()) {
     t.failures = DescribeInitFailures(summary.init_attempts);
   }
@@ -296,10 +308,11 @@ void StartFigures(const std::string& preset, const Args& args) {
       if (t.started) {
         std::printf(
             " (%s) after %.2f s, scale %+.2f %% (alignment %+.2f %%), "
-            "gravity %.3f deg, b_g %.5f, predicted scale sigma %.2f %%",
+            "gravity %.3f deg, b_g %.5f, b_a %.3f, predicted scale sigma "
+            "%.2f %% (initialiser's own %.2f %%)",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
             100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
-            100 * t.scale_sigma);
+            t.accel_bias, 100 * t.scale_sigma, 100 * t.own_sigma);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }
