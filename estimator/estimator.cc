@@ -407,8 +407,6 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   }
   const bool imu_ok = problem.AddImuFactors();
   const int landmarks = problem.AddVisualFactors();
-  summary_.visual_factors += problem.num_visual_residuals();
-  summary_.visual_factors_folded_before += problem.num_visual_folded_before();
   AddZeroVelocityFactors(&problem);
   Solve(&problem);
 
@@ -509,7 +507,6 @@ WindowProblemSettings Estimator::ProblemSettings() const {
   s.estimate_extrinsics = options_.estimate_extrinsics;
   s.estimate_time_offset = options_.estimate_time_offset;
   s.max_landmarks = options_.landmarks.max_landmarks;
-  s.reanchored_tracks = options_.landmarks.reanchored_tracks;
   return s;
 }
 
@@ -517,29 +514,10 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
                                   const OutlierReport& outliers) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ThreadCpuSeconds();
-  const ReanchoredTracks policy = options_.landmarks.reanchored_tracks;
-  // Tracks that go on keep all their later sightings in the problem; only
-  // their sighting in the leaving frame is lost (with the frame).
-  const std::vector<int64_t> kept = policy == ReanchoredTracks::kDropLeaving
-                                        ? problem.ContinuingLandmarks()
-                                        : std::vector<int64_t>();
-  const MarginalizationProblem m =
-      problem.OldestFrameMarginalization(outliers, kept);
+  const MarginalizationProblem m = problem.OldestFrameMarginalization(outliers);
   const MarginalizationResult result = Marginalize(m);
   ++summary_.marginalizations;
   if (result.ok()) {
-    // Each folded sighting counted (skip_prior and drop_leaving keep it out
-    // of the problem from now on, fold_once out of later marginalisations).
-    int left_out = 0;
-    for (const SightingRef& s : problem.FoldedSightings(outliers, kept,
-                                                         &left_out)) {
-      if (features_.RecordFold(s.feature_id, s.frame_id, s.camera) == 1) {
-        ++summary_.sightings_folded;
-      }
-      ++summary_.sighting_folds;
-    }
-    summary_.refolds_left_out += left_out;
-    summary_.tracks_carried_on += static_cast<int64_t>(kept.size());
     prior_ = result.MakePrior();
     prior_blocks_ = result.kept_parameter_blocks;
     // The extrinsic and gap-bias priors were folded factors: now in prior_.
@@ -550,8 +528,6 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
   } else {
     // No usable prior: a fresh one on the frame that becomes the oldest.
     ++summary_.marginalization_failures;
-    // The folds went with the old prior: each sighting may be folded anew.
-    features_.ForgetFolds();
     if (std::count(gap_bias_prior_blocks_.begin(), gap_bias_prior_blocks_.end(),
                    window_.frames[0]->speed_bias.data()) != 0) {
       gap_bias_prior_.reset();

@@ -119,21 +119,6 @@ struct EstimatorSummary {
   int64_t outlier_landmarks_removed = 0;  // most of their sightings bad
   int64_t outlier_sightings_removed = 0;  // single sightings, landmark kept
   int64_t landmarks_behind_removed = 0;   // inverse depth <= 0 after a solve
-  // At marginalisations (landmarks.reanchored_tracks): visual factors folded
-  // into the prior, the distinct sightings they came from (their ratio: how
-  // often a sighting is folded on average), the factors left out because
-  // their sighting was folded before (fold_once), and tracks that went on
-  // with only their sighting in the leaving frame dropped (drop_leaving).
-  int64_t sighting_folds = 0;
-  int64_t sightings_folded = 0;
-  int64_t refolds_left_out = 0;
-  int64_t tracks_carried_on = 0;
-  // Visual factors of the solved problems, summed over the steps, and those
-  // whose sighting was folded into the prior before (with reuse and
-  // fold_once still factors of the problem: counted in the prior and again
-  // live while the sighting stays in the window).
-  int64_t visual_factors = 0;
-  int64_t visual_factors_folded_before = 0;
   int64_t marginalizations = 0;
   int64_t marginalization_failures = 0;  // prior replaced by a fresh one
   int64_t solver_failures = 0;           // Ceres reported failure

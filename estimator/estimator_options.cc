@@ -6,32 +6,6 @@
 
 namespace vio {
 
-const char* ReanchoredTracksName(ReanchoredTracks r) {
-  switch (r) {
-    case ReanchoredTracks::kReuse:
-      return "reuse";
-    case ReanchoredTracks::kSkipPrior:
-      return "skip_prior";
-    case ReanchoredTracks::kDropLeaving:
-      return "drop_leaving";
-    case ReanchoredTracks::kFoldOnce:
-      return "fold_once";
-  }
-  return "?";
-}
-
-bool ParseReanchoredTracks(const std::string& name, ReanchoredTracks* r) {
-  for (ReanchoredTracks c :
-       {ReanchoredTracks::kReuse, ReanchoredTracks::kSkipPrior,
-        ReanchoredTracks::kDropLeaving, ReanchoredTracks::kFoldOnce}) {
-    if (name == ReanchoredTracksName(c)) {
-      *r = c;
-      return true;
-    }
-  }
-  return false;
-}
-
 bool EstimatorOptions::Validate(std::string* message) const {
   OptionRules c;
   c.AtLeast("window_size", window_size, 2);

@@ -35,30 +35,6 @@ struct TriangulationOptions {
   int min_observations = 2;   // sightings (frames x cameras) needed [-]
 };
 
-// The landmarks anchored in the keyframe that leaves the window.
-enum class ReanchoredTracks {
-  // All their factors go into the prior; re-anchored on their next sighting
-  // (depth carried over), every remaining sighting enters the problem again,
-  // although it already shaped the prior (VINS-Mono's way).
-  kReuse,
-  // The same, but a re-anchored track keeps only the sightings made after
-  // the marginalisation (a sighting already folded into a prior never enters
-  // the problem again); the new anchor's ray is taken as given.
-  kSkipPrior,
-  // A track still seen in the newest frame is not marginalised: its sighting
-  // in the leaving frame is dropped and it is re-anchored with all its other
-  // sightings (OKVIS's way). Ended tracks go into the prior as above.
-  kDropLeaving,
-  // As kReuse (re-anchored, every sighting stays a factor of the problem),
-  // but a sighting is folded into a prior at most once: when the new anchor
-  // leaves, the factors of sightings already folded with an earlier anchor
-  // are left out of that marginalisation (dropped, not folded again).
-  kFoldOnce,
-};
-const char* ReanchoredTracksName(ReanchoredTracks r);
-// false when name is none of reuse, skip_prior, drop_leaving, fold_once.
-bool ParseReanchoredTracks(const std::string& name, ReanchoredTracks* r);
-
 // Which landmarks enter the problem and which leave it after the solve. (The
 // pixel noise and the robust kernel are the visual factors' own options,
 // factors/visual_factor_options.h.)
@@ -70,9 +46,6 @@ struct LandmarkOptions {
   double outlier_threshold_px = 5.0;
   // Landmarks per step at most, those with the most sightings first [-].
   int max_landmarks = 120;
-  // What happens to the landmarks anchored in a keyframe that is
-  // marginalised (docs/recorded_flights.md, "Consistency").
-  ReanchoredTracks reanchored_tracks = ReanchoredTracks::kReuse;
 };
 
 // Static start: the IMU tells when the vehicle stands still.

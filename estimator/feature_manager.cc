@@ -113,22 +113,6 @@ void FeatureManager::RemoveFrame(int64_t frame_id, const CameraPoseFn& T_w_c) {
   }
 }
 
-int FeatureManager::RecordFold(int64_t feature_id, int64_t frame_id,
-                               int camera) {
-  const auto it = landmarks_.find(feature_id);
-  if (it == landmarks_.end()) return 0;
-  for (Sighting& s : it->second.sightings) {
-    if (s.frame_id == frame_id && s.camera == camera) return ++s.folds;
-  }
-  return 0;
-}
-
-void FeatureManager::ForgetFolds() {
-  for (auto& [id, l] : landmarks_) {
-    for (Sighting& s : l.sightings) s.folds = 0;
-  }
-}
-
 void FeatureManager::RemoveSighting(int64_t feature_id, int64_t frame_id,
                                     int camera) {
   const auto it = landmarks_.find(feature_id);

@@ -32,10 +32,6 @@ struct Sighting {
   int camera = 0;
   Eigen::Vector2d xy = Eigen::Vector2d::Zero();        // normalised [-]
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // d xy / dt [1/s]
-  // How many marginalisation priors its visual factor was folded into
-  // (FeatureManager::RecordFold); > 0: its information is in the prior
-  // (what landmarks.reanchored_tracks acts on, estimator_options.h).
-  int folds = 0;
 };
 
 struct Landmark {
@@ -106,11 +102,6 @@ class FeatureManager {
                                     const CameraPoseFn& T_w_c);
 
   void RemoveLandmark(int64_t feature_id) { landmarks_.erase(feature_id); }
-  // Notes that the sighting's visual factor was folded into the
-  // marginalisation prior; returns its fold count now (0 when absent).
-  int RecordFold(int64_t feature_id, int64_t frame_id, int camera);
-  // Every fold count back to 0: the prior that held them was discarded.
-  void ForgetFolds();
   // Removes one sighting (nothing when absent). When it was the anchor the
   // landmark is re-anchored untriangulated (its depth belonged to the
   // removed bearing); a landmark left without sightings is deleted.

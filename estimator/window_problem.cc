@@ -122,33 +122,22 @@ void WindowProblem::AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
   AddResidual(std::move(r));
 }
 
-bool WindowProblem::SkipFoldedSightings() const {
-  return settings_.reanchored_tracks == ReanchoredTracks::kSkipPrior ||
-         settings_.reanchored_tracks == ReanchoredTracks::kDropLeaving;
-}
-
 int WindowProblem::AddVisualFactors() {
-  // Candidates: triangulated, anchored in the window, seen again later by a
-  // sighting that may enter the problem. Ranked by the sightings they bring:
-  // the anchor and those used.
-  const bool skip = SkipFoldedSightings();
-  std::vector<std::pair<int, Landmark*>> candidates;
+  // Candidates: triangulated, anchored in the window, seen again later.
+  std::vector<Landmark*> candidates;
   for (auto& [id, l] : features_->landmarks()) {
     if (!l.triangulated || !l.HasAnchor()) continue;
-    const int anchor = l.AnchorIndex();
-    int used = 0;
-    for (size_t k = anchor + 1; k < l.sightings.size(); ++k) {
-      if (!(skip && l.sightings[k].folds > 0)) ++used;
-    }
-    if (used == 0) continue;
-    candidates.push_back({used + 1 + anchor, &l});
+    if (l.AnchorIndex() + 1 >= static_cast<int>(l.sightings.size())) continue;
+    candidates.push_back(&l);
   }
   std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
+                   [](const Landmark* a, const Landmark* b) {
+                     return a->sightings.size() > b->sightings.size();
+                   });
   if (static_cast<int>(candidates.size()) > settings_.max_landmarks) {
     candidates.resize(settings_.max_landmarks);
   }
-  for (const auto& [rank, l] : candidates) AddLandmark(l);
+  for (Landmark* l : candidates) AddLandmark(l);
   landmarks_used_ = static_cast<int>(candidates.size());
   return landmarks_used_;
 }
@@ -169,8 +158,6 @@ void WindowProblem::AddLandmark(Landmark* l) {
                                          : Eigen::Vector2d::Zero();
   for (size_t k = anchor + 1; k < l->sightings.size(); ++k) {
     const Sighting& s = l->sightings[k];
-    // Its information is in the prior already.
-    if (s.folds > 0 && SkipFoldedSightings()) continue;
     const double sqrt_info =
         settings_.visual.SqrtInformation(settings_.focal_px[s.camera]);
     Residual r;
@@ -180,7 +167,6 @@ void WindowProblem::AddLandmark(Landmark* l) {
     r.target_frame = s.frame_id;
     r.target_camera = s.camera;
     r.anchor_frame = a.frame_id;
-    r.folded_before = s.folds > 0;
     if (s.frame_id == a.frame_id) {
       r.owned = Tangent(
           std::make_unique<StereoReprojectionFactor>(a.xy, s.xy, sqrt_info),
@@ -226,7 +212,6 @@ void WindowProblem::AddLandmark(Landmark* l) {
       }
     }
     r.cost = r.owned.get();
-    if (r.folded_before) ++num_visual_folded_before_;
     AddResidual(std::move(r));
     ++num_visual_;
   }
@@ -393,74 +378,8 @@ OutlierReport WindowProblem::Outliers(double threshold_px) const {
   return report;
 }
 
-namespace {
-
-bool Contains(const std::vector<int64_t>& ids, int64_t id) {
-  return std::find(ids.begin(), ids.end(), id) != ids.end();
-}
-
-}  // namespace
-
-bool WindowProblem::Folds(const Residual& r, const OutlierReport& excluded,
-                          const std::vector<int64_t>& kept,
-                          bool* refold) const {
-  if (refold != nullptr) *refold = false;
-  if (r.feature_id < 0 || r.anchor_frame != window_->frames.front()->id ||
-      excluded.Involves(r.feature_id) || Contains(kept, r.feature_id)) {
-    return false;
-  }
-  if (r.folded_before &&
-      settings_.reanchored_tracks == ReanchoredTracks::kFoldOnce) {
-    if (refold != nullptr) *refold = true;
-    return false;
-  }
-  return true;
-}
-
-std::vector<int64_t> WindowProblem::MarginalizedLandmarks(
-    const OutlierReport& excluded, const std::vector<int64_t>& kept) const {
-  std::vector<int64_t> ids;
-  for (const Residual& r : residuals_) {
-    if (Folds(r, excluded, kept) &&
-        (ids.empty() || ids.back() != r.feature_id)) {
-      ids.push_back(r.feature_id);
-    }
-  }
-  return ids;
-}
-
-std::vector<SightingRef> WindowProblem::FoldedSightings(
-    const OutlierReport& excluded, const std::vector<int64_t>& kept,
-    int* left_out) const {
-  std::vector<SightingRef> folded;
-  if (left_out != nullptr) *left_out = 0;
-  for (const Residual& r : residuals_) {
-    bool refold = false;
-    if (Folds(r, excluded, kept, &refold)) {
-      folded.push_back({r.feature_id, r.target_frame, r.target_camera});
-    } else if (refold && left_out != nullptr) {
-      ++*left_out;
-    }
-  }
-  return folded;
-}
-
-std::vector<int64_t> WindowProblem::ContinuingLandmarks() const {
-  std::vector<int64_t> ids;
-  const int64_t oldest = window_->frames.front()->id;
-  const int64_t newest = window_->frames.back()->id;
-  for (const Residual& r : residuals_) {
-    if (r.feature_id >= 0 && r.anchor_frame == oldest &&
-        r.target_frame == newest &&
-        (ids.empty() || ids.back() != r.feature_id)) {
-      ids.push_back(r.feature_id);
-    }
-  }
-  return ids;
-}
-
 MarginalizationProblem WindowProblem::OldestFrameMarginalization(
-    const OutlierReport& excluded, const std::vector<int64_t>& kept) const {
+    const OutlierReport& excluded) const {
   MarginalizationProblem m;
   const WindowFrame& oldest = *window_->frames.front();
   std::set<const double*> touched;
@@ -469,7 +388,8 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
         r.feature_id < 0 && r.imu_start_frame < 0 && r.link_start_frame < 0;
     const bool use = prior || r.imu_start_frame == oldest.id ||
                      r.link_start_frame == oldest.id ||
-                     Folds(r, excluded, kept);
+                     (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
+                      !excluded.Involves(r.feature_id));
     if (!use) continue;
     m.residual_blocks.push_back({r.cost, r.loss, r.blocks});
     touched.insert(r.blocks.begin(), r.blocks.end());
@@ -486,11 +406,9 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
   for (const double* block : {oldest.pose.data(), oldest.speed_bias.data()}) {
     if (touched.count(block) != 0) m.marginalized.push_back(block);
   }
-  // The inverse depths of the landmarks with a folded factor (with
-  // kFoldOnce one whose every factor was folded before has none: it stays
-  // in the window, re-anchored, its factors dropped from this prior).
   for (const Residual& r : residuals_) {
-    if (Folds(r, excluded, kept) &&
+    if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
+        !excluded.Involves(r.feature_id) &&
         (m.marginalized.empty() || m.marginalized.back() != r.rho)) {
       m.marginalized.push_back(r.rho);
     }

@@ -20,10 +20,6 @@
 //                   blocks pose_i, pose_j, T_b_c0, T_b_c1, rho
 //                   (TimedStereoTwoFrameReprojectionFactor, with t_d after
 //                   rho, when the time offset is estimated)
-// With landmarks.reanchored_tracks skip_prior or drop_leaving, sightings
-// already folded into a prior (Sighting::folds > 0, their factor marginalised
-// with an earlier anchor) are not used either; with fold_once they are used,
-// but left out of the marginalisation (OldestFrameMarginalization).
 // Sightings older than the anchor (camera 1 only) are not used, so only the
 // landmarks anchored in a frame have residuals touching that frame: the
 // marginalisation of the oldest frame then removes exactly those landmarks,
@@ -61,20 +57,15 @@ struct WindowProblemSettings {
   bool estimate_time_offset = false;
   double max_time_offset_s = 0.02;  // |t_d| bound while estimated [s]
   int max_landmarks = 120;
-  // What a sighting already folded into a prior does (estimator_options.h).
-  ReanchoredTracks reanchored_tracks = ReanchoredTracks::kReuse;
-};
-
-// A sighting by its landmark, frame and camera.
-struct SightingRef {
-  int64_t feature_id = -1;
-  int64_t frame_id = -1;
-  int camera = 0;
 };
 
 // What the outlier test found.
 struct OutlierReport {
-  using BadSighting = SightingRef;
+  struct BadSighting {
+    int64_t feature_id = -1;
+    int64_t frame_id = -1;
+    int camera = 0;
+  };
   std::vector<int64_t> landmarks;      // to remove whole, by feature id
   std::vector<BadSighting> sightings;  // to remove, their landmark kept
   // Landmarks whose inverse depth is not positive after the solve: the point
@@ -126,40 +117,14 @@ class WindowProblem {
   // and every visual factor of the landmarks anchored in it; marginalised are
   // its pose and speed-bias blocks and those landmarks' inverse depths.
   // Landmarks with outliers (about to be removed) are left out.
-  // Landmarks in `kept` (feature ids) are left out too: their sighting in
-  // the oldest frame is dropped instead (ReanchoredTracks::kDropLeaving).
-  // With kFoldOnce a visual factor whose target sighting was folded before
-  // (Sighting::folds > 0) is left out (dropped: its information is in the
-  // prior already); a landmark left with no factor is not marginalised.
   MarginalizationProblem OldestFrameMarginalization(
-      const OutlierReport& excluded,
-      const std::vector<int64_t>& kept = {}) const;
-
-  // The landmarks in the problem anchored in the oldest frame and seen in the
-  // newest: tracks that go on.
-  std::vector<int64_t> ContinuingLandmarks() const;
-
-  // The landmarks (feature ids) whose visual factors and inverse depths
-  // OldestFrameMarginalization(excluded, kept) marginalises.
-  std::vector<int64_t> MarginalizedLandmarks(
-      const OutlierReport& excluded,
-      const std::vector<int64_t>& kept = {}) const;
-
-  // The target sightings of the visual factors that
-  // OldestFrameMarginalization(excluded, kept) folds into the prior, in the
-  // problem's order; `left_out` (optional): the factors it leaves out
-  // because their sighting was folded before (kFoldOnce).
-  std::vector<SightingRef> FoldedSightings(const OutlierReport& excluded,
-                                           const std::vector<int64_t>& kept,
-                                           int* left_out = nullptr) const;
+      const OutlierReport& excluded) const;
 
   // The problem as a ceres::Problem on the window's blocks, as the Ceres
   // backend solves it (for estimator/pose_covariance.h).
   std::unique_ptr<ceres::Problem> CeresProblem() const;
 
   int num_visual_residuals() const { return num_visual_; }
-  // Visual residuals whose sighting was folded into a prior before.
-  int num_visual_folded_before() const { return num_visual_folded_before_; }
   int landmarks_used() const { return landmarks_used_; }
   // Every residual of the problem: visual, IMU, priors and frame links.
   int num_residuals() const { return static_cast<int>(residuals_.size()); }
@@ -177,7 +142,6 @@ class WindowProblem {
     int64_t target_frame = -1;  // visual residuals: the sighting's frame
     int target_camera = 0;
     int64_t anchor_frame = -1;
-    bool folded_before = false;  // visual: its sighting's folds > 0
     int64_t imu_start_frame = -1;   // IMU residuals only
     int64_t link_start_frame = -1;  // AddFrameLink residuals only
     int first_index = 0;            // its blocks' indices in indices_
@@ -199,14 +163,6 @@ class WindowProblem {
   std::vector<bool> TouchedBlocks() const;
   void AddResidual(Residual residual);
   void AddLandmark(Landmark* landmark);
-  // Whether the marginalisation of the oldest frame folds this (visual)
-  // residual; `refold` (optional) is set when it is left out only because
-  // its sighting was folded before (kFoldOnce).
-  bool Folds(const Residual& r, const OutlierReport& excluded,
-             const std::vector<int64_t>& kept, bool* refold = nullptr) const;
-  // Sightings already folded stay out of the problem (skip_prior and
-  // drop_leaving).
-  bool SkipFoldedSightings() const;
   // Image velocity d xy / dt [1/s] of the point p_c [m] in `camera` of
   // frame, predicted from the frame's current state (the timed factors).
   Eigen::Vector2d MotionVelocity(const WindowFrame& frame,
@@ -223,7 +179,6 @@ class WindowProblem {
   std::vector<double*> block_order_;                     // as added
   std::vector<int> indices_;  // every residual's blocks (block_order_ index)
   int num_visual_ = 0;
-  int num_visual_folded_before_ = 0;
   int landmarks_used_ = 0;
 };
 

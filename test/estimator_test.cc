@@ -102,33 +102,6 @@ TEST(Estimator, StereoSimulationTracksWithoutReset) {
   EXPECT_LT(r.final_b_a_error, 0.03);
 }
 
-// landmarks.reanchored_tracks over a whole run: with reuse a sighting is
-// folded into the prior again with each anchor its landmark gets; with
-// fold_once every sighting is folded once, the repeats left out.
-TEST(Estimator, FoldOnceFoldsEverySightingOnce) {
-  const SimulatorOptions sim = testing::ShortSimulation(12.0, false);
-  const Simulation simulation = Simulate(sim);
-  EstimatorOptions options = testing::OptionsFor(sim);
-  const SimReplay reuse = ReplaySimulation(simulation, options);
-  options.landmarks.reanchored_tracks = ReanchoredTracks::kFoldOnce;
-  const SimReplay once = ReplaySimulation(simulation, options);
-  for (const SimReplay* r : {&reuse, &once}) {
-    std::printf("%s: %lld folds of %lld sightings, %lld left out, ATE %.4f m\n",
-                r == &reuse ? "reuse" : "fold_once",
-                static_cast<long long>(r->summary.sighting_folds),
-                static_cast<long long>(r->summary.sightings_folded),
-                static_cast<long long>(r->summary.refolds_left_out),
-                r->ate_rmse_m);
-    EXPECT_EQ(r->summary.resets, 0);
-    EXPECT_EQ(r->summary.marginalization_failures, 0);
-    EXPECT_GT(r->summary.sightings_folded, 1000);
-  }
-  EXPECT_GT(reuse.summary.sighting_folds, 2 * reuse.summary.sightings_folded);
-  EXPECT_EQ(reuse.summary.refolds_left_out, 0);
-  EXPECT_EQ(once.summary.sighting_folds, once.summary.sightings_folded);
-  EXPECT_GT(once.summary.refolds_left_out, once.summary.sighting_folds);
-}
-
 // Keeps every core busy until destroyed: the load of a CI machine running
 // other tests (ctest -j2) or other builds beside this one.
 class CpuLoad {

@@ -143,21 +143,6 @@ void PrintSummary(const EstimatorSummary& s,
       1e3 * Quantile(s.marginalization_cpu_time_s, 1.0),
       (long long)s.marginalizations, (long long)s.marginalization_failures);
   std::printf(
-      "  folded into the prior %lld visual factors of %lld sightings "
-      "(%.2f each), %lld left out as folded before\n",
-      (long long)s.sighting_folds, (long long)s.sightings_folded,
-      s.sightings_folded > 0
-          ? static_cast<double>(s.sighting_folds) / s.sightings_folded
-          : 0.0,
-      (long long)s.refolds_left_out);
-  std::printf(
-      "  visual factors        %lld over the steps, %.1f %% of them on a "
-      "sighting folded into the prior before\n",
-      (long long)s.visual_factors,
-      s.visual_factors > 0
-          ? 100.0 * s.visual_factors_folded_before / s.visual_factors
-          : 0.0);
-  std::printf(
       "  landmarks per step    median %.0f; outliers removed: %lld "
       "sightings, %lld landmarks; %lld landmarks behind their anchor "
       "removed\n",
