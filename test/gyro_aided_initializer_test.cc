@@ -6,6 +6,7 @@
 
 #include "dataset/simulator.h"
 #include "frontend/observation_builder.h"
+#include "test/testing/spread.h"
 
 namespace vio {
 namespace {
@@ -67,14 +68,7 @@ const StampedState& TruthAt(const Simulation& sim, int64_t t_ns) {
   return sim.ground_truth.back();
 }
 
-double Spread(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& x : p) c += x;
-  c /= static_cast<double>(p.size());
-  double s = 0.0;
-  for (const Eigen::Vector3d& x : p) s += (x - c).squaredNorm();
-  return std::sqrt(s / static_cast<double>(p.size()));
-}
+using vio::testing::Spread;
 
 // The start's errors against the truth, all independent of the gauge
 // (position and yaw): velocities in the body frame, gravity seen from the

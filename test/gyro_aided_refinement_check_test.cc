@@ -16,6 +16,7 @@
 #include "dataset/simulator.h"
 #include "estimator/estimator.h"
 #include "test/testing/sim_replay.h"
+#include "test/testing/spread.h"
 
 namespace vio {
 namespace {
@@ -70,14 +71,7 @@ struct Trial {
   int refusals = 0;          // gyro-aided attempts refused for `reason`
 };
 
-double Spread(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& x : p) c += x;
-  c /= static_cast<double>(p.size());
-  double s = 0.0;
-  for (const Eigen::Vector3d& x : p) s += (x - c).squaredNorm();
-  return std::sqrt(s / static_cast<double>(p.size()));
-}
+using vio::testing::Spread;
 
 Trial RunTrial(const std::string& preset, uint32_t seed, double phase_s,
                InitFailure reason) {

@@ -15,6 +15,7 @@
 
 #include "factors/pose_manifold.h"
 #include "testing/pose_test_factors.h"
+#include "test/testing/spread.h"
 
 namespace vio {
 namespace {
@@ -31,14 +32,7 @@ std::vector<Eigen::Vector3d> Shape(int n) {
   return q;
 }
 
-double Spread(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& x : p) c += x;
-  c /= static_cast<double>(p.size());
-  double s = 0.0;
-  for (const auto& x : p) s += (x - c).squaredNorm();
-  return std::sqrt(s / static_cast<double>(p.size()));
-}
+using vio::testing::Spread;
 
 // r = (t - s q) / sigma on a pose (7) and a scale (1).
 struct ScaledPositionResidual {

@@ -43,6 +43,7 @@
 #include "estimator/sequence_runner.h"
 #include "test/benchmark/init_diagnosis.h"
 #include "test/testing/sim_replay.h"
+#include "test/testing/spread.h"
 
 namespace vio {
 namespace {
@@ -148,15 +149,7 @@ const StampedState& TruthAt(const Simulation& sim, int64_t t_ns) {
   return it == sim.ground_truth.end() ? sim.ground_truth.back() : *it;
 }
 
-// RMS distance of the points from their centroid.
-double Spread(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& x : p) c += x;
-  c /= static_cast<double>(p.size());
-  double s = 0.0;
-  for (const auto& x : p) s += (x - c).squaredNorm();
-  return std::sqrt(s / p.size());
-}
+using vio::testing::Spread;
 
 // --diagnose: one line per frame with the mono start's verdict, the pairs
 // (selected frame, newest) the structure from motion could take, and the
