@@ -9,7 +9,7 @@ set -euo pipefail
 
 packages=(build-essential cmake libceres-dev libeigen3-dev libopencv-dev
           libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libboost-graph-dev)
+          libboost-graph-dev lld-14)
 if [ "${1:-}" = "--sanitizers" ]; then
   packages+=(clang-14 libclang-rt-14-dev llvm-14)
 elif [ $# -gt 0 ]; then
