@@ -133,9 +133,10 @@ struct InitOptions {
   double refine_tilt_rad = 0.5;
   // After a failure reset while moving, run the in-motion initialiser again
   // and let its states replace the restarted window (position and yaw kept).
-  // Off: the restart from the prediction with the weak prior keeps the map's
-  // scale and attitude, and measured 7-30x better ATE after a reset than
-  // a fresh start's estimate (docs/initialisation.md).
+  // Off: the restart from the running state with the weak prior keeps the
+  // scale, attitude and biases; measured better than the re-initialisation
+  // on mono and not better on stereo (35 resets, scripts/reinit_table.sh;
+  // docs/initialisation.md), so every shipped config keeps it off.
   bool reinitialize_after_reset = false;
 
   // Checks every field; `stereo_available` is EstimatorOptions::use_stereo

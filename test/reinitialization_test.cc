@@ -14,7 +14,10 @@
 #include <limits>
 #include <string>
 
+#include "config/estimator_config.h"
+#include "config/imu_config.h"
 #include "config/simulator_config.h"
+#include "config/yaml_reader.h"
 #include "dataset/fault_injection.h"
 #include "dataset/simulator.h"
 #include "estimator/estimator.h"
@@ -64,8 +67,8 @@ const SimReplay& On() {
   return *run;
 }
 
-const StampedState& TruthAt(int64_t t_ns) {
-  const auto& gt = Sequence().ground_truth;
+const StampedState& TruthAt(const Simulation& sim, int64_t t_ns) {
+  const auto& gt = sim.ground_truth;
   const auto it = std::lower_bound(
       gt.begin(), gt.end(), t_ns,
       [](const StampedState& s, int64_t t) { return s.t_ns < t; });
@@ -78,12 +81,13 @@ double ScaleError(const StartRecord& start) {
   auto spread = [&](bool truth) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (const InitialFrame& f : start.window) {
-      c += truth ? TruthAt(f.t_imu_ns).p_w_b : f.p_w_b;
+      c += truth ? TruthAt(Sequence(), f.t_imu_ns).p_w_b : f.p_w_b;
     }
     c /= static_cast<double>(start.window.size());
     double s = 0.0;
     for (const InitialFrame& f : start.window) {
-      s += ((truth ? TruthAt(f.t_imu_ns).p_w_b : f.p_w_b) - c).squaredNorm();
+      s += ((truth ? TruthAt(Sequence(), f.t_imu_ns).p_w_b : f.p_w_b) - c)
+               .squaredNorm();
     }
     return std::sqrt(s / static_cast<double>(start.window.size()));
   };
@@ -98,14 +102,14 @@ struct Jump {
   double position_m = 0.0;
   double rotation_rad = 0.0;
 };
-Jump JumpAt(const SimReplay& r, int64_t t_ns) {
+Jump JumpAt(const Simulation& sim, const SimReplay& r, int64_t t_ns) {
   Jump jump;
   for (size_t k = 1; k < r.outputs.size(); ++k) {
     if (r.outputs[k].t_ns != t_ns) continue;
     const EstimatorOutput& a = r.outputs[k - 1];
     const EstimatorOutput& b = r.outputs[k];
-    const StampedState& ta = TruthAt(a.t_ns);
-    const StampedState& tb = TruthAt(b.t_ns);
+    const StampedState& ta = TruthAt(sim, a.t_ns);
+    const StampedState& tb = TruthAt(sim, b.t_ns);
     const Eigen::Vector3d step = a.q_w_b.conjugate() * (b.p_w_b - a.p_w_b);
     const Eigen::Vector3d true_step =
         ta.q_w_b.conjugate() * (tb.p_w_b - ta.p_w_b);
@@ -118,14 +122,15 @@ Jump JumpAt(const SimReplay& r, int64_t t_ns) {
   return jump;
 }
 
-void ExpectResetWhileMoving(const SimReplay& r) {
+void ExpectResetWhileMoving(const Simulation& sim, const SimReplay& r,
+                            InitMethod first_start = InitMethod::kStatic) {
   ASSERT_GE(r.summary.resets, 1);
   EXPECT_EQ(r.summary.reset_log[0].reason, Failure::kUnsafeState);
   ASSERT_FALSE(r.summary.starts.empty());
-  EXPECT_EQ(r.summary.starts.front().method, InitMethod::kStatic);
+  EXPECT_EQ(r.summary.starts.front().method, first_start);
   EXPECT_FALSE(r.summary.starts.front().restart);
   // Moving at the reset: the case the option is for.
-  EXPECT_GT(TruthAt(r.summary.reset_log[0].t_ns).v_w.norm(), 0.5);
+  EXPECT_GT(TruthAt(sim, r.summary.reset_log[0].t_ns).v_w.norm(), 0.5);
   // No frame after the first start loses its pose to the reset.
   EXPECT_EQ(r.summary.frames_processed + r.summary.frames_before_init,
             r.summary.frames);
@@ -136,7 +141,7 @@ void ExpectResetWhileMoving(const SimReplay& r) {
   // position at the last velocity, its attitude by the gyroscope. Held at
   // the last output it lagged one frame step (0.054 m at ~1.1 m/s, and the
   // turn over the step), an offset the restarted window never removes.
-  const Jump at_reset = JumpAt(r, r.summary.reset_log[0].t_ns);
+  const Jump at_reset = JumpAt(sim, r, r.summary.reset_log[0].t_ns);
   std::printf("step into the reset frame against true: %.4f m, %.3f deg\n",
               at_reset.position_m, at_reset.rotation_rad * 180.0 / M_PI);
   EXPECT_LT(at_reset.position_m, 0.01);
@@ -145,7 +150,7 @@ void ExpectResetWhileMoving(const SimReplay& r) {
 
 TEST(Reinitialization, OffTheResetOnlyRestartsFromThePrediction) {
   const SimReplay& r = Off();
-  ExpectResetWhileMoving(r);
+  ExpectResetWhileMoving(Sequence(), r);
   EXPECT_EQ(r.summary.reinitializations, 0);
   EXPECT_EQ(r.summary.starts.size(), 1u);
   // The restart keeps the running state: the run stays near the truth
@@ -155,7 +160,7 @@ TEST(Reinitialization, OffTheResetOnlyRestartsFromThePrediction) {
 
 TEST(Reinitialization, OnTheInMotionStartReplacesTheRestartedWindow) {
   const SimReplay& r = On();
-  ExpectResetWhileMoving(r);
+  ExpectResetWhileMoving(Sequence(), r);
   ASSERT_GE(r.summary.reinitializations, 1);
   // The second start is the re-initialisation: mono, in motion, after the
   // reset, once the frames since it span init.mono.min_span_s.
@@ -180,7 +185,7 @@ TEST(Reinitialization, OnTheInMotionStartReplacesTheRestartedWindow) {
   // running pose, a scale change in its adjustment moved that frame 0.86 m;
   // with the yaw taken from the heading of body x (nearly vertical on this
   // IMU) its attitude turned by tens of degrees in the stereo presets.
-  const Jump jump = JumpAt(r, again.t_ns);
+  const Jump jump = JumpAt(Sequence(), r, again.t_ns);
   EXPECT_LT(jump.position_m, 0.1);
   EXPECT_LT(jump.rotation_rad, 2.0 * M_PI / 180.0);
   // Its scale against the truth, for the docs (measured +55 %, where the
@@ -200,12 +205,78 @@ TEST(Reinitialization, TheDefaultRestartIsTheBetterOnThisReset) {
   // restart carries the running velocity (so the scale), attitude and
   // biases on, a fresh mono start re-estimates them from 2 s of motion
   // (+55 % of scale here). Should the re-initialisation ever become the
-  // better, the default has to be revisited (on the stereo rows of the
-  // docs' table it already is, by 2-3 mm).
+  // better, the default has to be revisited. (On stereo it is a tie at the
+  // median over 35 resets, with a worse tail: off there too, measured by
+  // scripts/reinit_table.sh.)
   std::printf(
       "ATE with the reset: restart only %.4f m, re-initialised %.4f m\n",
       Off().ate_rmse_m, On().ate_rmse_m);
   EXPECT_LT(Off().ate_rmse_m, On().ate_rmse_m);
+}
+
+// Stereo: the stereo preset (2 s still, then the ellipse), 8 s, replayed with
+// the shipped config/stereo.yaml (its estimator: and imu: blocks) with the
+// option on, the same fault at 6.03 s (~1.3 m/s). The stereo re-start is
+// not the default (docs/initialisation.md: a tie at the median over 35
+// resets); this holds that the path works when chosen: a stereo start soon
+// after the reset, no jump, the run near the truth.
+const Simulation& StereoSequence() {
+  static const Simulation* simulation = [] {
+    SimulatorOptions o = LoadSimulatorOptions(std::string(VIO_SOURCE_DIR) +
+                                              "/config/sim_stereo.yaml");
+    o.duration_s = 8.0;
+    return new Simulation(Simulate(o));
+  }();
+  return *simulation;
+}
+
+TEST(Reinitialization, OnStereoTheReStartIsAStereoStartWithoutAJump) {
+  const YamlNode root =
+      YamlNode::LoadFile(std::string(VIO_SOURCE_DIR) + "/config/stereo.yaml");
+  EstimatorOptions options = ReadEstimatorOptions(root);
+  ApplyImuConfig(LoadImuConfig(root), &options);
+  ASSERT_TRUE(options.use_stereo);
+  options.imu_stream.range.accelerometer_range =
+      std::numeric_limits<double>::max();
+  options.init.reinitialize_after_reset = true;
+  ImuFault fault;
+  fault.kind = ImuFaultKind::kAccelValue;
+  fault.t_s = 6.03;
+  fault.count = 1;
+  fault.value = 1e6;
+  const Simulation& sim = StereoSequence();
+  const SimReplay r =
+      testing::Replay(sim, options, WithImuFault(sim.imu, fault),
+                      testing::Prepare(sim).frames);
+  // With the shipped stereo config the first start is a stereo one, in the
+  // blend from rest to the ellipse.
+  ExpectResetWhileMoving(sim, r, InitMethod::kStereo);
+  ASSERT_GE(r.summary.reinitializations, 1);
+  ASSERT_GE(r.summary.starts.size(), 2u);
+  const StartRecord& again = r.summary.starts[1];
+  EXPECT_TRUE(again.restart);
+  EXPECT_EQ(again.method, InitMethod::kStereo);
+  EXPECT_GE(again.window.front().t_ns, r.summary.reset_log[0].t_ns);
+  // A stereo start needs init.stereo.min_span_s of frames (0.35 s): it came
+  // 0.35-0.75 s after the reset in the docs' table (aggressive: up to 2.85).
+  const double after_s =
+      1e-9 * static_cast<double>(again.t_ns - r.summary.reset_log[0].t_ns);
+  EXPECT_GE(after_s, options.init.stereo.min_span_s - 0.05);
+  EXPECT_LE(after_s, 1.0);
+  // The gauge kept: before YawBetween, the stereo re-start's attitude
+  // jumped by 48.6 deg (docs/initialisation.md). Now 0.010 m and 1.48 deg:
+  // the gauge keeps the yaw, not the tilt, and a stereo start's gravity is
+  // ~1.4 deg off at the median over its 0.35 s span (same bound as mono).
+  const Jump jump = JumpAt(sim, r, again.t_ns);
+  std::printf(
+      "stereo re-start %.2f s after the reset: jump %.4f m, %.3f deg; "
+      "ATE %.4f m\n",
+      after_s, jump.position_m, jump.rotation_rad * 180.0 / M_PI,
+      r.ate_rmse_m);
+  EXPECT_LT(jump.position_m, 0.05);
+  EXPECT_LT(jump.rotation_rad, 2.0 * M_PI / 180.0);
+  EXPECT_GT(r.ate_rmse_m, 0.0);
+  EXPECT_LT(r.ate_rmse_m, 0.05);
 }
 
 }  // namespace
