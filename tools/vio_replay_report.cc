@@ -19,14 +19,6 @@ double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
 }
 
-// The q-quantile (0..1) of the values, nearest rank; 0 when empty.
-double Quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t k = static_cast<size_t>(q * (values.size() - 1) + 0.5);
-  return values[std::min(k, values.size() - 1)];
-}
-
 }  // namespace
 
 Progress::Progress(const std::vector<FeatureFrame>& frames)
@@ -116,10 +108,11 @@ void PrintSummary(const EstimatorSummary& s,
   std::printf(
       "  solver time per step  median %.2f ms, p95 %.2f ms, max %.2f "
       "ms CPU (%zu steps; wall median %.2f ms)\n",
-      1e3 * Quantile(s.solver_cpu_time_s, 0.5),
-      1e3 * Quantile(s.solver_cpu_time_s, 0.95),
-      1e3 * Quantile(s.solver_cpu_time_s, 1.0), s.solver_cpu_time_s.size(),
-      1e3 * Quantile(s.solver_time_s, 0.5));
+      1e3 * s.solver_cpu_time_s.Quantile(0.5),
+      1e3 * s.solver_cpu_time_s.Quantile(0.95),
+      1e3 * s.solver_cpu_time_s.Quantile(1.0),
+      static_cast<size_t>(s.solver_cpu_time_s.count()),
+      1e3 * s.solver_time_s.Quantile(0.5));
   std::printf(
       "  solver time split     Jacobians %.2f s, residuals %.2f s, linear "
       "solver %.2f s, preprocessing %.2f s; %.1f iterations per step\n",
@@ -127,28 +120,23 @@ void PrintSummary(const EstimatorSummary& s,
       s.solver_linear_time_s, s.solver_preprocess_time_s,
       s.solver_time_s.empty()
           ? 0.0
-          : static_cast<double>(s.solver_iterations) / s.solver_time_s.size());
+          : static_cast<double>(s.solver_iterations) /
+                static_cast<double>(s.solver_time_s.count()));
   std::printf(
       "  solver work per step  median %.0f window frames, %.0f residuals\n",
-      Quantile(std::vector<double>(s.window_frames_per_step.begin(),
-                                   s.window_frames_per_step.end()),
-               0.5),
-      Quantile(std::vector<double>(s.residuals_per_step.begin(),
-                                   s.residuals_per_step.end()),
-               0.5));
+      s.window_frames_per_step.Quantile(0.5),
+      s.residuals_per_step.Quantile(0.5));
   std::printf(
       "  marginalisation       median %.2f ms, max %.2f ms CPU (%lld, "
       "%lld failed)\n",
-      1e3 * Quantile(s.marginalization_cpu_time_s, 0.5),
-      1e3 * Quantile(s.marginalization_cpu_time_s, 1.0),
+      1e3 * s.marginalization_cpu_time_s.Quantile(0.5),
+      1e3 * s.marginalization_cpu_time_s.Quantile(1.0),
       (long long)s.marginalizations, (long long)s.marginalization_failures);
   std::printf(
       "  landmarks per step    median %.0f; outliers removed: %lld "
       "sightings, %lld landmarks; %lld landmarks behind their anchor "
       "removed\n",
-      Quantile(std::vector<double>(s.landmarks_per_step.begin(),
-                                   s.landmarks_per_step.end()),
-               0.5),
+      s.landmarks_per_step.Quantile(0.5),
       (long long)s.outlier_sightings_removed,
       (long long)s.outlier_landmarks_removed,
       (long long)s.landmarks_behind_removed);
