@@ -167,6 +167,18 @@ EstimatorOutput Estimator::OutputOf(const WindowFrame& f, int64_t t_ns) const {
 }
 
 EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
+  const EstimatorOutput out = Step(frame);
+  std::vector<int64_t> ids;
+  ids.reserve(frame.observations.size());
+  for (const FeatureObservation& o : frame.observations) {
+    ids.push_back(o.feature_id);
+  }
+  std::sort(ids.begin(), ids.end());
+  landmark_map_.Retire(features_, ids);
+  return out;
+}
+
+EstimatorOutput Estimator::Step(const FeatureFrame& frame) {
   ++summary_.frames;
   EstimatorOutput skipped = last_output_;
   skipped.t_ns = frame.t_ns;

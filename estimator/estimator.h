@@ -198,16 +198,28 @@ class Estimator {
   double time_offset_s() const { return window_.t_d; }
   // The extrinsic of camera 0 or 1, as estimated (or held fixed).
   Eigen::Isometry3d T_b_c(int camera) const { return window_.T_b_c(camera); }
-  // The landmarks triangulated so far, by feature id, with world position [m]
-  // and triangulation angle (estimator/landmark_map.h: each as when its
-  // anchor frame was last marginalised, or as now when still in the window).
+  // The landmarks triangulated so far and not taken by
+  // TakeFinishedLandmarks, by feature id, with world position [m] and
+  // triangulation angle (estimator/landmark_map.h: each as when its anchor
+  // frame was last marginalised, or as now when still in the window).
   // Landmarks lost to a reset, or removed as outliers before their anchor left,
   // are not in it. Read-only: it does not change the estimate.
   std::map<int64_t, MappedLandmark> MappedLandmarks() const {
     return landmark_map_.WithWindow(features_, PoseFn());
   }
+  // Hands over the mapped landmarks that can no longer change (out of the
+  // window, their tracks ended; estimator/landmark_map.h), by feature id,
+  // and forgets them. A caller that writes them out as the run goes (as
+  // vio_replay does landmarks.csv), then MappedLandmarks() at the end, gets
+  // every landmark once and keeps only the window's in memory. Read-only
+  // for the estimate.
+  std::map<int64_t, MappedLandmark> TakeFinishedLandmarks() {
+    return landmark_map_.TakeFinished();
+  }
 
  private:
+  // AddFrame before the landmark map learns which tracks ended.
+  EstimatorOutput Step(const FeatureFrame& frame);
   bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
   // The rest of the start (estimator_start.cc): the window from an
   // initialiser's states, the joint visual-inertial adjustment and its

@@ -21,31 +21,26 @@ double Seconds(std::chrono::steady_clock::duration d) {
 
 }  // namespace
 
-Progress::Progress(const std::vector<FeatureFrame>& frames)
-    : frames_(frames),
+Progress::Progress(size_t total, int64_t first_ns)
+    : total_(total),
+      first_ns_(first_ns),
       terminal_(isatty(fileno(stdout)) != 0),
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
-double Progress::SequenceSeconds(size_t i) const {
-  return frames_.empty() ? 0.0
-                         : 1e-9 * static_cast<double>(frames_[i].t_ns -
-                                                      frames_.front().t_ns);
-}
-
-void Progress::Update(size_t i) {
+void Progress::Update(size_t i, int64_t t_ns) {
   const auto now = std::chrono::steady_clock::now();
-  const double percent = 100.0 * (i + 1) / std::max<size_t>(1, frames_.size());
+  const double percent = 100.0 * (i + 1) / std::max<size_t>(1, total_);
   const double wall = std::max(1e-9, Seconds(now - start_));
-  const double rt = SequenceSeconds(i) / wall;
+  const double rt = 1e-9 * static_cast<double>(t_ns - first_ns_) / wall;
   if (terminal_) {
-    if (Seconds(now - last_draw_) < 0.1 && i + 1 < frames_.size()) return;
+    if (Seconds(now - last_draw_) < 0.1 && i + 1 < total_) return;
     last_draw_ = now;
     const int width = 30;
     const int filled = static_cast<int>(percent / 100.0 * width);
     std::printf("\r[%s%s] %zu/%zu frames %5.1f %%  %.1fx real time",
                 std::string(filled, '#').c_str(),
-                std::string(width - filled, '.').c_str(), i + 1, frames_.size(),
+                std::string(width - filled, '.').c_str(), i + 1, total_,
                 percent, rt);
     std::fflush(stdout);
     return;
@@ -54,7 +49,7 @@ void Progress::Update(size_t i) {
   if (decile == last_decile_) return;
   last_decile_ = decile;
   std::printf("progress: %zu/%zu frames (%.0f %%), %.1fx real time\n", i + 1,
-              frames_.size(), percent, rt);
+              total_, percent, rt);
 }
 
 void Progress::Finish() {
@@ -80,11 +75,11 @@ Trajectory WriteOutputs(const std::string& dir,
 }
 
 void PrintSummary(const EstimatorSummary& s,
-                  const std::vector<FeatureFrame>& frames, double wall_s) {
+                  const std::vector<EstimatorOutput>& outputs, double wall_s) {
   const double span_s =
-      frames.size() < 2
+      outputs.size() < 2
           ? 0.0
-          : 1e-9 * static_cast<double>(frames.back().t_ns - frames[0].t_ns);
+          : 1e-9 * static_cast<double>(outputs.back().t_ns - outputs[0].t_ns);
   std::printf("summary\n");
   std::printf(
       "  frames      %lld (processed %lld, before init %lld, skipped "
