@@ -390,6 +390,8 @@ int main(int argc, char** argv) {
     const std::string folder = SequenceFolder(args);
     EurocReadOptions read;
     read.strict = args.strict;
+    // Checked now, read again at the end at the estimate's stamps only.
+    read.keep_ground_truth = false;
     const EurocSequence seq = LoadEurocSequence(folder, read);
     const int used = config.estimator.use_stereo ? 2 : 1;
     if (static_cast<int>(seq.cameras.size()) < used) {
@@ -501,8 +503,10 @@ int main(int argc, char** argv) {
         LateStartWarning(estimator.summary(), seq.data.start_ns);
     if (!late.empty()) std::printf("%s\n", late.c_str());
     // Without two poses Evaluate prints the ATE as n/a (the status says why).
-    if (!seq.data.ground_truth.empty()) {
-      Evaluate(args.out, estimate, seq.data.ground_truth, outputs.size());
+    if (!seq.data.ground_truth_path.empty()) {
+      Evaluate(args.out, estimate,
+               GroundTruthAt(seq.data.ground_truth_path, estimate),
+               outputs.size());
     }
     std::string why;
     const int status = ReplayExitStatus(estimator.summary(), with_pose, &why);

@@ -167,6 +167,16 @@ void PrintStarts(const EstimatorSummary& s) {
               static_cast<long long>(s.zero_velocity_frames));
 }
 
+std::vector<StampedState> GroundTruthAt(const std::string& path,
+                                        const Trajectory& estimate) {
+  NearestGroundTruth nearest(estimate);
+  ReadEurocGroundTruth(path, [&](const StampedState& s) { nearest.Add(s); });
+  if (static_cast<size_t>(nearest.states()) < estimate.size()) {
+    return ReadEurocGroundTruth(path);
+  }
+  return nearest.Take();
+}
+
 void Evaluate(const std::string& dir, const Trajectory& estimate,
               const std::vector<StampedState>& ground_truth, size_t frames) {
   Trajectory truth;

@@ -48,6 +48,14 @@ void PrintSummary(const EstimatorSummary& summary,
 // failed start attempts counted by method and reason.
 void PrintStarts(const EstimatorSummary& summary);
 
+// The ground-truth states Evaluate needs for `estimate`, read from the
+// EuRoC ground-truth file a state at a time (eval/association.h,
+// NearestGroundTruth): one per estimate pose, so that memory follows the
+// trajectory, not the ground truth's rate. The whole file when it holds
+// fewer states than the estimate has poses.
+std::vector<StampedState> GroundTruthAt(const std::string& path,
+                                        const Trajectory& estimate);
+
 // Associates, aligns (posyaw), prints ATE and RPE (1 m of travel) and writes
 // DIR/evaluation.png. The ATE line says how many of the sequence's `frames`
 // it covers (poses associated with the ground truth).
