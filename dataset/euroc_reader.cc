@@ -194,7 +194,7 @@ EurocData ReadEurocFolder(const std::string& folder,
     if (options.keep_ground_truth) {
       data.ground_truth = ReadEurocGroundTruth(gt);
     } else {
-      ReadEurocGroundTruth(gt, [&](const StampedState& s) {
+      ForEachEurocGroundTruth(gt, [&](const StampedState& s) {
         gt_first_ns = std::min(gt_first_ns, s.t_ns);
       });
     }

@@ -66,7 +66,7 @@ struct EurocReadOptions {
   // false: the ground truth is read and checked (a bad line is an error
   // here, as when kept) but not kept: EurocData::ground_truth stays empty
   // and ground_truth_path names the file, for a caller that reads it again
-  // later a state at a time (ReadEurocGroundTruth with a callback) and keeps
+  // later a state at a time (ForEachEurocGroundTruth) and keeps
   // only the states it needs, so that its memory does not grow with the
   // ground truth's rate and length.
   bool keep_ground_truth = true;

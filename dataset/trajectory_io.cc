@@ -119,11 +119,12 @@ const char* TrajectoryFormatName(TrajectoryFormat format) {
 
 std::vector<StampedState> ReadEurocGroundTruth(const std::string& path) {
   std::vector<StampedState> out;
-  ReadEurocGroundTruth(path, [&](const StampedState& s) { out.push_back(s); });
+  ForEachEurocGroundTruth(path,
+                          [&](const StampedState& s) { out.push_back(s); });
   return out;
 }
 
-int64_t ReadEurocGroundTruth(
+int64_t ForEachEurocGroundTruth(
     const std::string& path,
     const std::function<void(const StampedState&)>& take) {
   CsvReader csv(path);

@@ -55,7 +55,7 @@ std::vector<StampedState> ReadEurocGroundTruth(const std::string& path);
 // The same file with the same checks, a state at a time: each is handed to
 // `take` in file order once its line is checked, and none is kept, so that
 // a caller can keep only the states it needs. Returns how many there were.
-int64_t ReadEurocGroundTruth(
+int64_t ForEachEurocGroundTruth(
     const std::string& path,
     const std::function<void(const StampedState&)>& take);
 

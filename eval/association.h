@@ -63,7 +63,7 @@ Association Associate(const Trajectory& estimate,
 
 // The ground truth an association of `estimate` needs, gathered from states
 // handed over one at a time (a ground-truth file read with
-// ReadEurocGroundTruth's callback, never held whole): for each estimate
+// ForEachEurocGroundTruth, never held whole): for each estimate
 // pose the state Associate would pair it with, by the rule above (nearest
 // stamp, on a tie the earlier), one per pose. Associate(estimate, Take())
 // then pairs exactly as with the whole ground truth, provided the whole has

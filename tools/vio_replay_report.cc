@@ -170,7 +170,7 @@ void PrintStarts(const EstimatorSummary& s) {
 std::vector<StampedState> GroundTruthAt(const std::string& path,
                                         const Trajectory& estimate) {
   NearestGroundTruth nearest(estimate);
-  ReadEurocGroundTruth(path, [&](const StampedState& s) { nearest.Add(s); });
+  ForEachEurocGroundTruth(path, [&](const StampedState& s) { nearest.Add(s); });
   if (static_cast<size_t>(nearest.states()) < estimate.size()) {
     return ReadEurocGroundTruth(path);
   }
