@@ -71,8 +71,10 @@ EurocCamera ReadCamera(const std::string& folder, int index) {
   return camera;
 }
 
-int64_t EarliestStamp(const EurocData& data) {
-  int64_t start = std::numeric_limits<int64_t>::max();
+// gt_first_ns: the ground truth's first stamp when it is not kept (the
+// largest int64_t otherwise).
+int64_t EarliestStamp(const EurocData& data, int64_t gt_first_ns) {
+  int64_t start = gt_first_ns;
   if (!data.imu.empty()) start = data.imu.front().t_ns;
   for (const EurocCamera& camera : data.cameras) {
     if (!camera.images.empty()) {
@@ -186,8 +188,18 @@ EurocData ReadEurocFolder(const std::string& folder,
     data.cameras.push_back(ReadCamera(camera, n));
   }
   const std::string gt = JoinPath(mav0, "state_groundtruth_estimate0/data.csv");
-  if (IsFile(gt)) data.ground_truth = ReadEurocGroundTruth(gt);
-  data.start_ns = EarliestStamp(data);
+  int64_t gt_first_ns = std::numeric_limits<int64_t>::max();
+  if (IsFile(gt)) {
+    data.ground_truth_path = gt;
+    if (options.keep_ground_truth) {
+      data.ground_truth = ReadEurocGroundTruth(gt);
+    } else {
+      ForEachEurocGroundTruth(gt, [&](const StampedState& s) {
+        gt_first_ns = std::min(gt_first_ns, s.t_ns);
+      });
+    }
+  }
+  data.start_ns = EarliestStamp(data, gt_first_ns);
   return data;
 }
 

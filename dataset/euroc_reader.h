@@ -63,6 +63,13 @@ struct EurocReadOptions {
   // Only for callers that never use the IMU or that say so explicitly (a
   // tool flag): an estimator must not run on a silently missing IMU.
   bool require_imu = true;
+  // false: the ground truth is read and checked (a bad line is an error
+  // here, as when kept) but not kept: EurocData::ground_truth stays empty
+  // and ground_truth_path names the file, for a caller that reads it again
+  // later a state at a time (ForEachEurocGroundTruth) and keeps
+  // only the states it needs, so that its memory does not grow with the
+  // ground truth's rate and length.
+  bool keep_ground_truth = true;
 };
 
 // The data of a whole sequence.
@@ -72,7 +79,8 @@ struct EurocData {
   std::vector<ImuSample> imu;  // strictly increasing stamps
   ImuStampReport imu_stamps;   // IMU lines dropped for their stamps
   std::vector<EurocCamera> cameras;        // cam0, cam1, ... as present
-  std::vector<StampedState> ground_truth;  // empty when absent
+  std::vector<StampedState> ground_truth;  // empty when absent or not kept
+  std::string ground_truth_path;           // empty when absent
   int64_t start_ns = 0;  // the earliest stamp of any stream [ns]
 
   // Seconds from the sequence start to `t_ns`, computed from the integer

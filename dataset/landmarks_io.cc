@@ -1,7 +1,6 @@
 #include "dataset/landmarks_io.h"
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 
 #include "dataset/csv.h"
@@ -10,15 +9,28 @@ namespace vio {
 
 void WriteLandmarksCsv(const std::string& path,
                        const std::vector<LandmarkRow>& landmarks) {
-  std::ofstream out(path);
-  if (!out) throw DatasetError(path + ": cannot open the file for writing");
-  out << std::setprecision(9) << "#x [m],y [m],z [m],parallax [deg]\n";
-  for (const LandmarkRow& l : landmarks) {
-    out << l.p_w.x() << ',' << l.p_w.y() << ',' << l.p_w.z() << ','
-        << std::setprecision(4) << l.parallax_deg << std::setprecision(9)
-        << '\n';
-  }
-  if (!out) throw DatasetError(path + ": write failed");
+  LandmarksCsvWriter writer(path);
+  for (const LandmarkRow& l : landmarks) writer.Write(l);
+  writer.Close();
+}
+
+LandmarksCsvWriter::LandmarksCsvWriter(const std::string& path)
+    : path_(path), out_(path) {
+  if (!out_) throw DatasetError(path + ": cannot open the file for writing");
+  out_ << std::setprecision(9) << "#x [m],y [m],z [m],parallax [deg]\n";
+}
+
+void LandmarksCsvWriter::Write(const LandmarkRow& l) {
+  out_ << l.p_w.x() << ',' << l.p_w.y() << ',' << l.p_w.z() << ','
+       << std::setprecision(4) << l.parallax_deg << std::setprecision(9)
+       << '\n';
+  if (!out_) throw DatasetError(path_ + ": write failed");
+  ++rows_;
+}
+
+void LandmarksCsvWriter::Close() {
+  out_.close();
+  if (!out_) throw DatasetError(path_ + ": write failed");
 }
 
 std::vector<LandmarkRow> ReadLandmarksCsv(const std::string& path) {

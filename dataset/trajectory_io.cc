@@ -118,25 +118,35 @@ const char* TrajectoryFormatName(TrajectoryFormat format) {
 }
 
 std::vector<StampedState> ReadEurocGroundTruth(const std::string& path) {
-  CsvReader csv(path);
   std::vector<StampedState> out;
-  Trajectory stamps;  // for the order check
+  ForEachEurocGroundTruth(path,
+                          [&](const StampedState& s) { out.push_back(s); });
+  return out;
+}
+
+int64_t ForEachEurocGroundTruth(
+    const std::string& path,
+    const std::function<void(const StampedState&)>& take) {
+  CsvReader csv(path);
+  int64_t count = 0;
+  Trajectory previous;  // the last state's pose only, for the order check
   while (csv.Next()) {
     csv.ExpectAtLeast(17);
     StampedState s;
     s.t_ns = csv.Int64(0);
-    CheckStampOrder(csv, stamps, s.t_ns, /*strict=*/true);
+    CheckStampOrder(csv, previous, s.t_ns, /*strict=*/true);
     s.p_w_b = {csv.Double(1), csv.Double(2), csv.Double(3)};
     s.q_w_b = CheckedQuaternion(csv, csv.Double(4), csv.Double(5),
                                 csv.Double(6), csv.Double(7));
     s.v_w = {csv.Double(8), csv.Double(9), csv.Double(10)};
     s.b_g = {csv.Double(11), csv.Double(12), csv.Double(13)};
     s.b_a = {csv.Double(14), csv.Double(15), csv.Double(16)};
-    out.push_back(s);
-    stamps.push_back(PoseOf(s));
+    take(s);
+    ++count;
+    previous.assign(1, PoseOf(s));
   }
-  if (out.empty()) throw DatasetError(path + ": holds no ground-truth line");
-  return out;
+  if (count == 0) throw DatasetError(path + ": holds no ground-truth line");
+  return count;
 }
 
 Trajectory ReadTum(const std::string& path) {

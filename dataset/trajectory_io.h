@@ -23,6 +23,8 @@
 // (ReadEurocGroundTruth) must have strictly increasing stamps: its users
 // interpolate in time.
 
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,6 +51,13 @@ struct TrajectoryFile {
 // The dataset's ground truth: 17 or more comma-separated fields (t[ns], p,
 // q(w,x,y,z), v, b_g, b_a), stamps strictly increasing, at least one line.
 std::vector<StampedState> ReadEurocGroundTruth(const std::string& path);
+
+// The same file with the same checks, a state at a time: each is handed to
+// `take` in file order once its line is checked, and none is kept, so that
+// a caller can keep only the states it needs. Returns how many there were.
+int64_t ForEachEurocGroundTruth(
+    const std::string& path,
+    const std::function<void(const StampedState&)>& take);
 
 // The single formats, repeated stamps kept; each holds at least one pose.
 Trajectory ReadTum(const std::string& path);

@@ -167,6 +167,18 @@ EstimatorOutput Estimator::OutputOf(const WindowFrame& f, int64_t t_ns) const {
 }
 
 EstimatorOutput Estimator::AddFrame(const FeatureFrame& frame) {
+  const EstimatorOutput out = Step(frame);
+  std::vector<int64_t> ids;
+  ids.reserve(frame.observations.size());
+  for (const FeatureObservation& o : frame.observations) {
+    ids.push_back(o.feature_id);
+  }
+  std::sort(ids.begin(), ids.end());
+  landmark_map_.Retire(features_, ids);
+  return out;
+}
+
+EstimatorOutput Estimator::Step(const FeatureFrame& frame) {
   ++summary_.frames;
   EstimatorOutput skipped = last_output_;
   skipped.t_ns = frame.t_ns;
@@ -428,15 +440,15 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
 }
 
 void Estimator::Solve(WindowProblem* problem) {
-  summary_.landmarks_per_step.push_back(problem->landmarks_used());
-  summary_.window_frames_per_step.push_back(
-      static_cast<int>(window_.frames.size()));
-  summary_.residuals_per_step.push_back(problem->num_residuals());
+  summary_.landmarks_per_step.Add(problem->landmarks_used());
+  summary_.window_frames_per_step.Add(
+      static_cast<double>(window_.frames.size()));
+  summary_.residuals_per_step.Add(problem->num_residuals());
   const double cpu_start = ThreadCpuSeconds();
   const ceres::Solver::Summary solve =
       problem->Solve(options_.solver, &solver_);
-  summary_.solver_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
-  summary_.solver_time_s.push_back(solve.total_time_in_seconds);
+  summary_.solver_cpu_time_s.Add(ThreadCpuSeconds() - cpu_start);
+  summary_.solver_time_s.Add(solve.total_time_in_seconds);
   summary_.solver_jacobian_time_s += solve.jacobian_evaluation_time_in_seconds;
   summary_.solver_residual_time_s += solve.residual_evaluation_time_in_seconds;
   summary_.solver_linear_time_s += solve.linear_solver_time_in_seconds;
@@ -540,9 +552,9 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
     prior_blocks_ = {next.pose.data(), next.speed_bias.data()};
     SetExtrinsicPrior();
   }
-  summary_.marginalization_time_s.push_back(
+  summary_.marginalization_time_s.Add(
       Seconds(std::chrono::steady_clock::now() - start));
-  summary_.marginalization_cpu_time_s.push_back(ThreadCpuSeconds() - cpu_start);
+  summary_.marginalization_cpu_time_s.Add(ThreadCpuSeconds() - cpu_start);
 }
 
 bool Estimator::NewestPoseCovariance(Eigen::Matrix<double, 6, 6>* covariance) {

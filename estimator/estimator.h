@@ -53,6 +53,7 @@
 #include "estimator/initialization.h"
 #include "estimator/landmark_map.h"
 #include "estimator/static_initializer.h"
+#include "estimator/value_histogram.h"
 #include "estimator/window.h"
 #include "estimator/window_problem.h"
 #include "estimator/zero_velocity.h"
@@ -91,6 +92,10 @@ struct ResetEvent {
 
 // Counters over the run; everything skipped or reset is counted here.
 struct EstimatorSummary {
+  static constexpr double kTimeUnitS = 1e-5;  // time histograms' bins [s]
+  static constexpr int kTimeExactBits = 11;   // exact below 2^11 units
+  static constexpr int kCountExactBits = 13;  // exact below 2^13
+
   int64_t frames = 0;            // AddFrame calls
   int64_t frames_processed = 0;  // frames that reached the window
   int64_t keyframes = 0;
@@ -123,22 +128,28 @@ struct EstimatorSummary {
   int64_t marginalization_failures = 0;  // prior replaced by a fresh one
   int64_t solver_failures = 0;           // Ceres reported failure
   // Per step: Ceres' wall time, and the CPU time of this thread during the
-  // solve (unaffected by other processes competing for the cores) [s].
-  std::vector<double> solver_time_s;
-  std::vector<double> solver_cpu_time_s;
+  // solve (unaffected by other processes competing for the cores) [s]. As
+  // histograms (estimator/value_histogram.h), so that a run of any length
+  // keeps them in fixed memory: times in bins of 10 us below 20.48 ms (the
+  // 0.01 ms vio_replay prints, so its medians and p95 print as the exact
+  // ones would), 1/2048 of the value above.
+  ValueHistogram solver_time_s{kTimeUnitS, kTimeExactBits};
+  ValueHistogram solver_cpu_time_s{kTimeUnitS, kTimeExactBits};
   // Where the solver time goes, summed over all steps [s], and iterations.
   double solver_jacobian_time_s = 0.0;    // residual + Jacobian evaluation
   double solver_residual_time_s = 0.0;    // residual-only evaluation
   double solver_linear_time_s = 0.0;      // linear solver (Schur, Cholesky)
   double solver_preprocess_time_s = 0.0;  // problem setup inside Ceres
   int64_t solver_iterations = 0;
-  std::vector<double> marginalization_time_s;      // wall, each [s]
-  std::vector<double> marginalization_cpu_time_s;  // thread CPU, each [s]
-  std::vector<int> landmarks_per_step;
-  // Per step, the work the solver time is spent on: the frames in the window
-  // and the residuals in the problem (visual, IMU, priors, zero motion).
-  std::vector<int> window_frames_per_step;
-  std::vector<int> residuals_per_step;
+  // Each marginalisation: wall and thread CPU [s], binned as the solver's.
+  ValueHistogram marginalization_time_s{kTimeUnitS, kTimeExactBits};
+  ValueHistogram marginalization_cpu_time_s{kTimeUnitS, kTimeExactBits};
+  // Per step, the landmarks in the problem and the work the solver time is
+  // spent on: the frames in the window and the residuals in the problem
+  // (visual, IMU, priors, zero motion). Counts, exact below 8192.
+  ValueHistogram landmarks_per_step{1.0, kCountExactBits};
+  ValueHistogram window_frames_per_step{1.0, kCountExactBits};
+  ValueHistogram residuals_per_step{1.0, kCountExactBits};
   // The start: every failed attempt (at most one per method and frame), and
   // every accepted start (the first, then re-initialisations after resets).
   std::vector<InitAttempt> init_attempts;
@@ -187,16 +198,28 @@ class Estimator {
   double time_offset_s() const { return window_.t_d; }
   // The extrinsic of camera 0 or 1, as estimated (or held fixed).
   Eigen::Isometry3d T_b_c(int camera) const { return window_.T_b_c(camera); }
-  // The landmarks triangulated so far, by feature id, with world position [m]
-  // and triangulation angle (estimator/landmark_map.h: each as when its
-  // anchor frame was last marginalised, or as now when still in the window).
+  // The landmarks triangulated so far and not taken by
+  // TakeFinishedLandmarks, by feature id, with world position [m] and
+  // triangulation angle (estimator/landmark_map.h: each as when its anchor
+  // frame was last marginalised, or as now when still in the window).
   // Landmarks lost to a reset, or removed as outliers before their anchor left,
   // are not in it. Read-only: it does not change the estimate.
   std::map<int64_t, MappedLandmark> MappedLandmarks() const {
     return landmark_map_.WithWindow(features_, PoseFn());
   }
+  // Hands over the mapped landmarks that can no longer change (out of the
+  // window, their tracks ended; estimator/landmark_map.h), by feature id,
+  // and forgets them. A caller that writes them out as the run goes (as
+  // vio_replay does landmarks.csv), then MappedLandmarks() at the end, gets
+  // every landmark once and keeps only the window's in memory. Read-only
+  // for the estimate.
+  std::map<int64_t, MappedLandmark> TakeFinishedLandmarks() {
+    return landmark_map_.TakeFinished();
+  }
 
  private:
+  // AddFrame before the landmark map learns which tracks ended.
+  EstimatorOutput Step(const FeatureFrame& frame);
   bool TryInitialize(const FeatureFrame& frame, int64_t t_imu_ns);
   // The rest of the start (estimator_start.cc): the window from an
   // initialiser's states, the joint visual-inertial adjustment and its

@@ -53,13 +53,35 @@ void LandmarkMap::RecordAnchoredIn(const FeatureManager& features,
   for (const auto& [id, landmark] : features.landmarks()) {
     if (!Usable(landmark) || landmark.anchor().frame_id != frame_id) continue;
     MappedLandmark m;
-    if (Map(landmark, T_w_c, &m)) Keep(id, m, &landmarks_);
+    if (Map(landmark, T_w_c, &m)) Keep(id, m, &recorded_);
   }
+}
+
+void LandmarkMap::Retire(const FeatureManager& features,
+                         const std::vector<int64_t>& newest_ids) {
+  for (auto it = recorded_.begin(); it != recorded_.end();) {
+    const int64_t id = it->first;
+    if (features.landmarks().count(id) != 0 ||
+        std::binary_search(newest_ids.begin(), newest_ids.end(), id)) {
+      ++it;
+      continue;
+    }
+    Keep(id, it->second, &finished_);
+    it = recorded_.erase(it);
+  }
+}
+
+std::map<int64_t, MappedLandmark> LandmarkMap::TakeFinished() {
+  std::map<int64_t, MappedLandmark> taken;
+  taken.swap(finished_);
+  return taken;
 }
 
 std::map<int64_t, MappedLandmark> LandmarkMap::WithWindow(
     const FeatureManager& features, const CameraPoseFn& T_w_c) const {
-  std::map<int64_t, MappedLandmark> all = landmarks_;
+  // In the order the records were made: finished ones first.
+  std::map<int64_t, MappedLandmark> all = finished_;
+  for (const auto& [id, m] : recorded_) Keep(id, m, &all);
   for (const auto& [id, landmark] : features.landmarks()) {
     MappedLandmark m;
     if (Usable(landmark) && Map(landmark, T_w_c, &m)) Keep(id, m, &all);

@@ -12,6 +12,14 @@
 // sightings, their first ones having left the window). Read-only for the
 // estimation: nothing here feeds back into the window.
 //
+// A record is finished once its landmark has left the window and its track
+// has ended (the newest frame does not observe it): nothing can replace it
+// any more. The finished records can be taken away as the run goes
+// (TakeFinished), so that a caller writing them out keeps only the window's
+// in memory, however long the run. (A track that resumed after a frame
+// without its feature would be a second landmark of the same id: the
+// trackers never do that, an id ends with its track.)
+//
 // Each carries its triangulation angle: the largest angle at the point
 // between the rays from the cameras that saw it in the window. Depth
 // precision falls with it (about pixel noise / angle): a landmark seen over
@@ -21,6 +29,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <vector>
 
 #include "estimator/feature_manager.h"
 
@@ -40,13 +49,23 @@ class LandmarkMap {
   void RecordAnchoredIn(const FeatureManager& features, int64_t frame_id,
                         const CameraPoseFn& T_w_c);
 
-  // The recorded landmarks by feature id, overlaid with the triangulated
-  // landmarks in the window now.
+  // Marks finished the records of landmarks that are no longer in the
+  // window and not in `newest_ids` (the feature ids the newest frame
+  // observed, sorted ascending).
+  void Retire(const FeatureManager& features,
+              const std::vector<int64_t>& newest_ids);
+
+  // The finished records not taken yet, by feature id; they are forgotten.
+  std::map<int64_t, MappedLandmark> TakeFinished();
+
+  // The records not taken yet (finished or not) by feature id, overlaid with
+  // the triangulated landmarks in the window now.
   std::map<int64_t, MappedLandmark> WithWindow(const FeatureManager& features,
                                                const CameraPoseFn& T_w_c) const;
 
  private:
-  std::map<int64_t, MappedLandmark> landmarks_;
+  std::map<int64_t, MappedLandmark> recorded_;  // may still be replaced
+  std::map<int64_t, MappedLandmark> finished_;  // final, not taken yet
 };
 
 }  // namespace vio

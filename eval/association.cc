@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vio {
@@ -80,6 +81,37 @@ Association Associate(const Trajectory& estimate,
     searched_out.push_back(searched[j]);
   }
   return out;
+}
+
+NearestGroundTruth::NearestGroundTruth(const Trajectory& estimate)
+    : estimate_(estimate) {
+  CheckNotDecreasing(estimate, "estimate");
+  nearest_.reserve(estimate.size());
+}
+
+void NearestGroundTruth::Add(const StampedState& s) {
+  if (states_ > 0 && s.t_ns <= before_.t_ns) {
+    throw std::invalid_argument(
+        "NearestGroundTruth: the ground-truth stamps do not increase at " +
+        std::to_string(s.t_ns));
+  }
+  // s is the first state at or after each pose's stamp t below, before_ the
+  // last one before it: Nearest takes before_ when t - before_ <= s - t.
+  for (; next_ < estimate_.size() && s.t_ns >= estimate_[next_].t_ns; ++next_) {
+    const int64_t t = estimate_[next_].t_ns;
+    nearest_.push_back(states_ > 0 && t - before_.t_ns <= s.t_ns - t ? before_
+                                                                     : s);
+  }
+  before_ = s;
+  ++states_;
+}
+
+std::vector<StampedState> NearestGroundTruth::Take() {
+  // The poses after the last state take the last state.
+  if (states_ > 0) {
+    for (; next_ < estimate_.size(); ++next_) nearest_.push_back(before_);
+  }
+  return std::move(nearest_);
 }
 
 Association AssociateByIndex(const Trajectory& estimate,

@@ -28,6 +28,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "dataset/trajectory.h"
 
@@ -59,6 +60,40 @@ struct Association {
 Association Associate(const Trajectory& estimate,
                       const Trajectory& ground_truth,
                       const AssociationOptions& options = {});
+
+// The ground truth an association of `estimate` needs, gathered from states
+// handed over one at a time (a ground-truth file read with
+// ForEachEurocGroundTruth, never held whole): for each estimate
+// pose the state Associate would pair it with, by the rule above (nearest
+// stamp, on a tie the earlier), one per pose. Associate(estimate, Take())
+// then pairs exactly as with the whole ground truth, provided the whole has
+// at least as many poses as the estimate (otherwise Associate walks the
+// ground truth: states() tells the caller to read it whole), and memory
+// follows the estimate, not the ground truth's rate.
+class NearestGroundTruth {
+ public:
+  // estimate: stamps never decreasing (std::invalid_argument otherwise);
+  // only its stamps are used, and it must outlive this object.
+  explicit NearestGroundTruth(const Trajectory& estimate);
+
+  // The next state; stamps strictly increasing (std::invalid_argument
+  // otherwise).
+  void Add(const StampedState& state);
+
+  // How many states were added.
+  int64_t states() const { return states_; }
+
+  // One state per estimate pose, in its order (none when no state was
+  // added). The object is spent afterwards.
+  std::vector<StampedState> Take();
+
+ private:
+  const Trajectory& estimate_;
+  size_t next_ = 0;  // the first estimate pose without its state yet
+  StampedState before_;
+  int64_t states_ = 0;
+  std::vector<StampedState> nearest_;
+};
 
 // Pairs pose i with pose i, for trajectories without stamps (KITTI pose
 // files, as evo's kitti mode does). Throws std::invalid_argument when the two

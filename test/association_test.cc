@@ -174,5 +174,60 @@ TEST(Association, RejectsUnsortedStampsAndBadMaxDiff) {
   EXPECT_THROW(Associate(sorted, sorted, {-0.1}), std::invalid_argument);
 }
 
+// vio_replay reads the ground truth a state at a time and keeps only the
+// state nearest each estimate pose: associating with those must give the
+// pairs of the whole ground truth, ties (an estimate stamp half-way between
+// two states) and poses before the first and after the last state included.
+TEST(Association, NearestGroundTruthPairsAsTheWholeDoes) {
+  std::mt19937 rng(42);
+  std::uniform_int_distribution<int64_t> gap(1, 6);  // [ms]
+  std::uniform_int_distribution<int> repeat(0, 3);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<int64_t> gt_ns, est_ns;
+    int64_t t = 0;
+    for (int i = 0; i < 200; ++i) gt_ns.push_back(t += 2 * gap(rng) * kMs);
+    // Fewer estimates, from before the first state to past the last, on
+    // whole ms so that some lie exactly half-way; some stamps repeat.
+    for (int64_t e = -30 * kMs; e < t + 30 * kMs; e += 4 * gap(rng) * kMs) {
+      for (int r = repeat(rng) == 0 ? 2 : 1; r > 0; --r) est_ns.push_back(e);
+    }
+    const Trajectory estimate = AtStamps(est_ns);
+    const Trajectory gt_poses = AtStamps(gt_ns);
+    NearestGroundTruth nearest(estimate);
+    for (const StampedPose& p : gt_poses) {
+      StampedState s;
+      s.t_ns = p.t_ns;
+      s.p_w_b = p.p_w_b;
+      nearest.Add(s);
+    }
+    ASSERT_EQ(nearest.states(), static_cast<int64_t>(gt_ns.size()));
+    Trajectory kept;
+    for (const StampedState& s : nearest.Take()) kept.push_back(PoseOf(s));
+    ASSERT_EQ(kept.size(), estimate.size());
+    ASSERT_LE(estimate.size(), gt_poses.size());  // as at 20 Hz against 200
+    for (double max_diff : {0.001, 0.01}) {
+      const Association whole = Associate(estimate, gt_poses, {max_diff});
+      const Association few = Associate(estimate, kept, {max_diff});
+      ASSERT_EQ(few.size(), whole.size()) << "trial " << trial;
+      for (size_t i = 0; i < whole.size(); ++i) {
+        EXPECT_EQ(few.estimate[i].p_w_b.x(), whole.estimate[i].p_w_b.x());
+        EXPECT_EQ(few.ground_truth[i].t_ns, whole.ground_truth[i].t_ns);
+        EXPECT_EQ(few.ground_truth[i].p_w_b.x(),
+                  whole.ground_truth[i].p_w_b.x());
+      }
+    }
+  }
+}
+
+TEST(Association, NearestGroundTruthRefusesDisorder) {
+  const Trajectory estimate = AtStamps({1, 2});
+  NearestGroundTruth nearest(estimate);
+  StampedState s;
+  s.t_ns = 5;
+  nearest.Add(s);
+  EXPECT_THROW(nearest.Add(s), std::invalid_argument);
+  EXPECT_THROW(NearestGroundTruth(AtStamps({2, 1})), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace vio

@@ -45,7 +45,8 @@ constexpr char kUsage[] =
     "features.csv, e.g. written by vio_sim, or images: data.csv + data/,\n"
     "tracked by the frontend) through the estimator. Writes\n"
     "DIR/trajectory.tum, DIR/states.csv and DIR/landmarks.csv (the mapped\n"
-    "landmarks: world x,y,z [m] and triangulation angle [deg]); with\n"
+    "landmarks: world x,y,z [m] and triangulation angle [deg], a row as\n"
+    "each is finished, in no meaningful order); with\n"
     "ground truth in the folder\n"
     "also DIR/evaluation.png, and prints ATE and RPE (posyaw alignment).\n"
     "Without SEQUENCE it simulates the default preset (vio_sim's built-in\n"
@@ -217,25 +218,46 @@ FrontendOptions ImageFrontendOptions(int cameras_used, const Config& config,
   return f;
 }
 
-// The frames vio_replay expects from the images (cam0's listed images that
-// exist), stamps only: the progress display's total.
-std::vector<FeatureFrame> ExpectedImageFrames(const EurocSequence& seq) {
-  std::vector<FeatureFrame> frames;
-  for (const ImageEntry& e : seq.data.cameras[0].images) {
-    frames.emplace_back();
-    frames.back().t_ns = e.t_ns;
+// DIR/landmarks.csv: the world positions of the landmarks the run mapped
+// and their triangulation angles (Estimator::MappedLandmarks), for vio_plan
+// --replay. Written as the run goes: after each frame the landmarks the
+// estimator has finished (TakeFinishedLandmarks), at the end those still in
+// its map; so the rows come in the order the landmarks were finished (by
+// feature id within a frame), and none is kept in memory once written.
+class LandmarkStream {
+ public:
+  explicit LandmarkStream(const std::string& dir)
+      : path_((fs::path(dir) / "landmarks.csv").string()), writer_(path_) {}
+
+  void Take(Estimator* estimator) {
+    for (const auto& [id, m] : estimator->TakeFinishedLandmarks()) {
+      writer_.Write({m.p_w, m.parallax_deg});
+    }
   }
-  return frames;
-}
+
+  void Finish(Estimator* estimator) {
+    Take(estimator);
+    for (const auto& [id, m] : estimator->MappedLandmarks()) {
+      writer_.Write({m.p_w, m.parallax_deg});
+    }
+    writer_.Close();
+    std::printf("wrote %s (%lld landmarks)\n", path_.c_str(),
+                static_cast<long long>(writer_.rows()));
+  }
+
+ private:
+  std::string path_;
+  LandmarksCsvWriter writer_;
+};
 
 // What an image replay produced: one output per frame; the frames with
-// their observations only when kept (--save-tracks), stamps otherwise, so
-// memory does not grow with the sequence beyond the outputs.
+// their observations only when kept (--save-tracks), so that memory does
+// not grow with the sequence beyond the outputs.
 struct ImageReplay {
   std::vector<EstimatorOutput> outputs;
-  std::vector<FeatureFrame> frames;
-  double wall_s = 0.0;  // images, frontend and estimator [s]
-  double cpu_s = 0.0;   // process CPU over the same span [s]
+  std::vector<FeatureFrame> frames;  // empty without --save-tracks
+  double wall_s = 0.0;               // images, frontend and estimator [s]
+  double cpu_s = 0.0;                // process CPU over the same span [s]
 };
 
 // Reads, tracks and estimates the images frame by frame: reading, cam0
@@ -243,10 +265,12 @@ struct ImageReplay {
 // (EurocImageStream threaded, RunFramePipeline), or all on this one
 // (--sequential).
 // The estimator gets the same frames in the same order either way.
+// After each frame the finished landmarks go to `landmarks`.
 ImageReplay ReplayImages(const EurocSequence& seq,
                          const FrontendOptions& frontend,
                          const PipelineOptions& pipeline, bool keep_tracks,
-                         Estimator* estimator, ImageTrackingSummary* summary,
+                         Estimator* estimator, LandmarkStream* landmarks,
+                         ImageTrackingSummary* summary,
                          ObservationBuilderSummary* removed) {
   // Pipelined, the stages are the parallelism: OpenCV's own pool (TBB here)
   // splitting each LK call over more threads only oversubscribes the cores.
@@ -255,21 +279,17 @@ ImageReplay ReplayImages(const EurocSequence& seq,
   if (!pipeline.sequential) cv::setNumThreads(1);
   EurocImageStream stream(seq, frontend, true, !pipeline.sequential);
   StreamingRunner runner(estimator, &seq.data.imu);
-  const std::vector<FeatureFrame> expected = ExpectedImageFrames(seq);
-  Progress progress(expected);
+  const std::vector<ImageEntry>& images = seq.data.cameras[0].images;
+  Progress progress(images.size(), images.empty() ? 0 : images[0].t_ns);
   ImageReplay replay;
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   RunFramePipeline([&](FeatureFrame* frame) { return stream.Next(frame); },
                    [&](FeatureFrame&& frame) {
                      replay.outputs.push_back(runner.AddFrame(frame));
-                     progress.Update(replay.outputs.size() - 1);
-                     if (keep_tracks) {
-                       replay.frames.push_back(std::move(frame));
-                     } else {  // the stamp only: frees the observations
-                       replay.frames.emplace_back();
-                       replay.frames.back().t_ns = frame.t_ns;
-                     }
+                     landmarks->Take(estimator);
+                     progress.Update(replay.outputs.size() - 1, frame.t_ns);
+                     if (keep_tracks) replay.frames.push_back(std::move(frame));
                    },
                    pipeline);
   replay.cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
@@ -356,19 +376,6 @@ std::vector<EstimatorCamera> Cameras(const EurocSequence& seq, int used) {
   return cameras;
 }
 
-// DIR/landmarks.csv: the world positions of the landmarks the run mapped
-// and their triangulation angles (Estimator::MappedLandmarks), for vio_plan
-// --replay.
-void WriteLandmarks(const std::string& dir, const Estimator& estimator) {
-  std::vector<LandmarkRow> points;
-  for (const auto& [id, m] : estimator.MappedLandmarks()) {
-    points.push_back({m.p_w, m.parallax_deg});
-  }
-  const std::string path = (fs::path(dir) / "landmarks.csv").string();
-  WriteLandmarksCsv(path, points);
-  std::printf("wrote %s (%zu landmarks)\n", path.c_str(), points.size());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -383,6 +390,8 @@ int main(int argc, char** argv) {
     const std::string folder = SequenceFolder(args);
     EurocReadOptions read;
     read.strict = args.strict;
+    // Checked now, read again at the end at the estimate's stamps only.
+    read.keep_ground_truth = false;
     const EurocSequence seq = LoadEurocSequence(folder, read);
     const int used = config.estimator.use_stereo ? 2 : 1;
     if (static_cast<int>(seq.cameras.size()) < used) {
@@ -419,13 +428,15 @@ int main(int argc, char** argv) {
     std::printf("imu noise: %s\n", noise_description.c_str());
     Estimator estimator(config.estimator, config.visual, noise,
                         config.imu.preintegration, Cameras(seq, used));
+    fs::create_directories(args.out);
+    LandmarkStream landmarks(args.out);
     std::vector<EstimatorOutput> outputs;
     double wall_s = 0.0;
     double cpu_s = 0.0;
     if (images) {
-      ImageReplay replay =
-          ReplayImages(seq, frontend, args.pipeline, !args.save_tracks.empty(),
-                       &estimator, &image_summary, &input.observations);
+      ImageReplay replay = ReplayImages(
+          seq, frontend, args.pipeline, !args.save_tracks.empty(), &estimator,
+          &landmarks, &image_summary, &input.observations);
       outputs = std::move(replay.outputs);
       frames = std::move(replay.frames);
       wall_s = replay.wall_s;
@@ -437,24 +448,25 @@ int main(int argc, char** argv) {
         }
       }
     } else {
-      Progress progress(frames);
+      Progress progress(frames.size(), frames.empty() ? 0 : frames[0].t_ns);
       const auto start = std::chrono::steady_clock::now();
-      outputs = RunSequence(
-          &estimator, seq.data.imu, frames,
-          [&](size_t i, const EstimatorOutput&) { progress.Update(i); });
+      outputs = RunSequence(&estimator, seq.data.imu, frames,
+                            [&](size_t i, const EstimatorOutput& o) {
+                              landmarks.Take(&estimator);
+                              progress.Update(i, o.t_ns);
+                            });
       wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                              start)
                    .count();
       progress.Finish();
     }
-    fs::create_directories(args.out);
     const Trajectory estimate = WriteOutputs(args.out, outputs);
-    WriteLandmarks(args.out, estimator);
+    landmarks.Finish(&estimator);
     for (const std::string& line : InputWarnings(
              input, estimator.summary(), config.estimator.imu_stream.range)) {
       std::printf("%s\n", line.c_str());
     }
-    PrintSummary(estimator.summary(), frames, wall_s);
+    PrintSummary(estimator.summary(), outputs, wall_s);
     PrintStarts(estimator.summary());
     const int64_t with_pose = static_cast<int64_t>(estimate.size());
     std::printf(
@@ -491,8 +503,10 @@ int main(int argc, char** argv) {
         LateStartWarning(estimator.summary(), seq.data.start_ns);
     if (!late.empty()) std::printf("%s\n", late.c_str());
     // Without two poses Evaluate prints the ATE as n/a (the status says why).
-    if (!seq.data.ground_truth.empty()) {
-      Evaluate(args.out, estimate, seq.data.ground_truth, frames.size());
+    if (!seq.data.ground_truth_path.empty()) {
+      Evaluate(args.out, estimate,
+               GroundTruthAt(seq.data.ground_truth_path, estimate),
+               outputs.size());
     }
     std::string why;
     const int status = ReplayExitStatus(estimator.summary(), with_pose, &why);

@@ -19,41 +19,28 @@ double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
 }
 
-// The q-quantile (0..1) of the values, nearest rank; 0 when empty.
-double Quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t k = static_cast<size_t>(q * (values.size() - 1) + 0.5);
-  return values[std::min(k, values.size() - 1)];
-}
-
 }  // namespace
 
-Progress::Progress(const std::vector<FeatureFrame>& frames)
-    : frames_(frames),
+Progress::Progress(size_t total, int64_t first_ns)
+    : total_(total),
+      first_ns_(first_ns),
       terminal_(isatty(fileno(stdout)) != 0),
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
-double Progress::SequenceSeconds(size_t i) const {
-  return frames_.empty() ? 0.0
-                         : 1e-9 * static_cast<double>(frames_[i].t_ns -
-                                                      frames_.front().t_ns);
-}
-
-void Progress::Update(size_t i) {
+void Progress::Update(size_t i, int64_t t_ns) {
   const auto now = std::chrono::steady_clock::now();
-  const double percent = 100.0 * (i + 1) / std::max<size_t>(1, frames_.size());
+  const double percent = 100.0 * (i + 1) / std::max<size_t>(1, total_);
   const double wall = std::max(1e-9, Seconds(now - start_));
-  const double rt = SequenceSeconds(i) / wall;
+  const double rt = 1e-9 * static_cast<double>(t_ns - first_ns_) / wall;
   if (terminal_) {
-    if (Seconds(now - last_draw_) < 0.1 && i + 1 < frames_.size()) return;
+    if (Seconds(now - last_draw_) < 0.1 && i + 1 < total_) return;
     last_draw_ = now;
     const int width = 30;
     const int filled = static_cast<int>(percent / 100.0 * width);
     std::printf("\r[%s%s] %zu/%zu frames %5.1f %%  %.1fx real time",
                 std::string(filled, '#').c_str(),
-                std::string(width - filled, '.').c_str(), i + 1, frames_.size(),
+                std::string(width - filled, '.').c_str(), i + 1, total_,
                 percent, rt);
     std::fflush(stdout);
     return;
@@ -62,7 +49,7 @@ void Progress::Update(size_t i) {
   if (decile == last_decile_) return;
   last_decile_ = decile;
   std::printf("progress: %zu/%zu frames (%.0f %%), %.1fx real time\n", i + 1,
-              frames_.size(), percent, rt);
+              total_, percent, rt);
 }
 
 void Progress::Finish() {
@@ -88,11 +75,11 @@ Trajectory WriteOutputs(const std::string& dir,
 }
 
 void PrintSummary(const EstimatorSummary& s,
-                  const std::vector<FeatureFrame>& frames, double wall_s) {
+                  const std::vector<EstimatorOutput>& outputs, double wall_s) {
   const double span_s =
-      frames.size() < 2
+      outputs.size() < 2
           ? 0.0
-          : 1e-9 * static_cast<double>(frames.back().t_ns - frames[0].t_ns);
+          : 1e-9 * static_cast<double>(outputs.back().t_ns - outputs[0].t_ns);
   std::printf("summary\n");
   std::printf(
       "  frames      %lld (processed %lld, before init %lld, skipped "
@@ -116,10 +103,11 @@ void PrintSummary(const EstimatorSummary& s,
   std::printf(
       "  solver time per step  median %.2f ms, p95 %.2f ms, max %.2f "
       "ms CPU (%zu steps; wall median %.2f ms)\n",
-      1e3 * Quantile(s.solver_cpu_time_s, 0.5),
-      1e3 * Quantile(s.solver_cpu_time_s, 0.95),
-      1e3 * Quantile(s.solver_cpu_time_s, 1.0), s.solver_cpu_time_s.size(),
-      1e3 * Quantile(s.solver_time_s, 0.5));
+      1e3 * s.solver_cpu_time_s.Quantile(0.5),
+      1e3 * s.solver_cpu_time_s.Quantile(0.95),
+      1e3 * s.solver_cpu_time_s.Quantile(1.0),
+      static_cast<size_t>(s.solver_cpu_time_s.count()),
+      1e3 * s.solver_time_s.Quantile(0.5));
   std::printf(
       "  solver time split     Jacobians %.2f s, residuals %.2f s, linear "
       "solver %.2f s, preprocessing %.2f s; %.1f iterations per step\n",
@@ -127,28 +115,23 @@ void PrintSummary(const EstimatorSummary& s,
       s.solver_linear_time_s, s.solver_preprocess_time_s,
       s.solver_time_s.empty()
           ? 0.0
-          : static_cast<double>(s.solver_iterations) / s.solver_time_s.size());
+          : static_cast<double>(s.solver_iterations) /
+                static_cast<double>(s.solver_time_s.count()));
   std::printf(
       "  solver work per step  median %.0f window frames, %.0f residuals\n",
-      Quantile(std::vector<double>(s.window_frames_per_step.begin(),
-                                   s.window_frames_per_step.end()),
-               0.5),
-      Quantile(std::vector<double>(s.residuals_per_step.begin(),
-                                   s.residuals_per_step.end()),
-               0.5));
+      s.window_frames_per_step.Quantile(0.5),
+      s.residuals_per_step.Quantile(0.5));
   std::printf(
       "  marginalisation       median %.2f ms, max %.2f ms CPU (%lld, "
       "%lld failed)\n",
-      1e3 * Quantile(s.marginalization_cpu_time_s, 0.5),
-      1e3 * Quantile(s.marginalization_cpu_time_s, 1.0),
+      1e3 * s.marginalization_cpu_time_s.Quantile(0.5),
+      1e3 * s.marginalization_cpu_time_s.Quantile(1.0),
       (long long)s.marginalizations, (long long)s.marginalization_failures);
   std::printf(
       "  landmarks per step    median %.0f; outliers removed: %lld "
       "sightings, %lld landmarks; %lld landmarks behind their anchor "
       "removed\n",
-      Quantile(std::vector<double>(s.landmarks_per_step.begin(),
-                                   s.landmarks_per_step.end()),
-               0.5),
+      s.landmarks_per_step.Quantile(0.5),
       (long long)s.outlier_sightings_removed,
       (long long)s.outlier_landmarks_removed,
       (long long)s.landmarks_behind_removed);
@@ -182,6 +165,16 @@ void PrintStarts(const EstimatorSummary& s) {
   }
   std::printf("  zero velocity         %lld frames held still\n",
               static_cast<long long>(s.zero_velocity_frames));
+}
+
+std::vector<StampedState> GroundTruthAt(const std::string& path,
+                                        const Trajectory& estimate) {
+  NearestGroundTruth nearest(estimate);
+  ForEachEurocGroundTruth(path, [&](const StampedState& s) { nearest.Add(s); });
+  if (static_cast<size_t>(nearest.states()) < estimate.size()) {
+    return ReadEurocGroundTruth(path);
+  }
+  return nearest.Take();
 }
 
 void Evaluate(const std::string& dir, const Trajectory& estimate,

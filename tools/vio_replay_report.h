@@ -5,6 +5,7 @@
 // the run summary and the evaluation against ground truth.
 
 #include <chrono>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,14 +18,15 @@ namespace vio {
 // in place; plain lines at every 10 % otherwise.
 class Progress {
  public:
-  explicit Progress(const std::vector<FeatureFrame>& frames);
-  void Update(size_t frame_index);
+  // total: the frames expected; first_ns: the stamp of the first [ns].
+  Progress(size_t total, int64_t first_ns);
+  // After frame `frame_index` (stamp t_ns) was estimated.
+  void Update(size_t frame_index, int64_t t_ns);
   void Finish();
 
  private:
-  double SequenceSeconds(size_t frame_index) const;
-
-  const std::vector<FeatureFrame>& frames_;
+  size_t total_;
+  int64_t first_ns_;
   bool terminal_;
   int last_decile_ = -1;
   std::chrono::steady_clock::time_point start_;
@@ -37,13 +39,22 @@ Trajectory WriteOutputs(const std::string& dir,
                         const std::vector<EstimatorOutput>& outputs);
 
 // frames, keyframes, resets (with reasons), solver time per step (median,
-// p95, max), marginalisation time, wall time and real-time factor.
+// p95, max), marginalisation time, wall time and real-time factor (over the
+// span of the outputs' stamps, one output per frame).
 void PrintSummary(const EstimatorSummary& summary,
-                  const std::vector<FeatureFrame>& frames, double wall_s);
+                  const std::vector<EstimatorOutput>& outputs, double wall_s);
 
 // The starts (first and re-initialisations) with their figures, and the
 // failed start attempts counted by method and reason.
 void PrintStarts(const EstimatorSummary& summary);
+
+// The ground-truth states Evaluate needs for `estimate`, read from the
+// EuRoC ground-truth file a state at a time (eval/association.h,
+// NearestGroundTruth): one per estimate pose, so that memory follows the
+// trajectory, not the ground truth's rate. The whole file when it holds
+// fewer states than the estimate has poses.
+std::vector<StampedState> GroundTruthAt(const std::string& path,
+                                        const Trajectory& estimate);
 
 // Associates, aligns (posyaw), prints ATE and RPE (1 m of travel) and writes
 // DIR/evaluation.png. The ATE line says how many of the sequence's `frames`
