@@ -28,14 +28,18 @@ namespace {
 
 using testing::SimReplay;
 
+// The preset config/sim_<preset>.yaml, its first `seconds`.
+Simulation SimulatePreset(const std::string& preset, double seconds) {
+  SimulatorOptions o = LoadSimulatorOptions(std::string(VIO_SOURCE_DIR) +
+                                            "/config/sim_" + preset + ".yaml");
+  o.duration_s = seconds;
+  return Simulate(o);
+}
+
 // The default preset (2 s still, then the ellipse), mono, 10 s.
 const Simulation& Sequence() {
-  static const Simulation* simulation = [] {
-    SimulatorOptions o = LoadSimulatorOptions(std::string(VIO_SOURCE_DIR) +
-                                              "/config/sim_default.yaml");
-    o.duration_s = 10.0;
-    return new Simulation(Simulate(o));
-  }();
+  static const Simulation* simulation =
+      new Simulation(SimulatePreset("default", 10.0));
   return *simulation;
 }
 
@@ -221,12 +225,8 @@ TEST(Reinitialization, TheDefaultRestartIsTheBetterOnThisReset) {
 // resets); this holds that the path works when chosen: a stereo start soon
 // after the reset, no jump, the run near the truth.
 const Simulation& StereoSequence() {
-  static const Simulation* simulation = [] {
-    SimulatorOptions o = LoadSimulatorOptions(std::string(VIO_SOURCE_DIR) +
-                                              "/config/sim_stereo.yaml");
-    o.duration_s = 8.0;
-    return new Simulation(Simulate(o));
-  }();
+  static const Simulation* simulation =
+      new Simulation(SimulatePreset("stereo", 8.0));
   return *simulation;
 }
 
