@@ -181,8 +181,9 @@ bool EurocImageStream::Read(Work* work) {
   ImageEntry entry;
   while (left_list_->Next(&entry)) {
     std::optional<ImageEntry> right_entry;
-    if (right_list_)
+    if (right_list_) {
       right_entry = RightAt(entry.t_ns, &work->counts[1].unpaired);
+    }
     const Clock::time_point start = Clock::now();
     cv::Mat left =
         ReadImage(entry.path, sequence_.cameras[0], &work->counts[0]);
