@@ -174,7 +174,7 @@ TEST(EstimatorStart, PlanarCircleIsRefusedForLackOfExcitation) {
 }
 
 // With the gyroscope-aided fallback on, the degenerate presets are refused
-// too. The pure rotation over 12 s: with gyro_min_parallax_px at 4 px the
+// too. The pure rotation over its 15 s: with gyro_min_parallax_px at 4 px the
 // fallback started sim_rotation's 15 s at 9.4 s (its parallax there, the
 // camera's lever arm and noise, is 3.6-4.6 px); and after a window showed no
 // translation the fallback waits kGyroAidedRetryAfterNoParallaxS before it
@@ -184,7 +184,7 @@ TEST(EstimatorStart, DegenerateMotionIsRefusedWithTheGyroAidedFallbackToo) {
   ExpectRefused("line", InitFailure::kLowImuExcitation, true);
   ExpectRefused("circle", InitFailure::kLowImuExcitation, true);
   const testing::SimReplay run =
-      ExpectRefused("rotation", InitFailure::kLowParallax, true, 12.0);
+      ExpectRefused("rotation", InitFailure::kLowParallax, true, 15.0);
   int gyro = 0;
   int64_t last = INT64_MIN, closest = INT64_MAX, widest = 0;
   for (const InitAttempt& a : run.summary.init_attempts) {
@@ -199,10 +199,10 @@ TEST(EstimatorStart, DegenerateMotionIsRefusedWithTheGyroAidedFallbackToo) {
     }
     last = a.t_ns;
   }
-  // 10.5 s after the span fills (210 frames): waits of 0.25, 0.5, 1, 2, 2,
+  // 13.5 s after the span fills (270 frames): waits of 0.25, 0.5, 1, 2, 2,
   // ... s, never longer than the window (a start is delayed by at most it).
   EXPECT_GE(gyro, 5);
-  EXPECT_LE(gyro, 12);
+  EXPECT_LE(gyro, 14);
   EXPECT_GE(closest, std::llround(kGyroAidedRetryAfterNoParallaxS * 1e9));
   EXPECT_LE(widest, std::llround(2.05e9));
 }
