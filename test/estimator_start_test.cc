@@ -131,6 +131,25 @@ TEST(EstimatorStart, StereoStartsInMotionWithinHalfASecond) {
   EXPECT_LT(run.ate_rmse_m, 0.05);
 }
 
+// testing::AteFrom (init_benchmark --against-default): from before the first
+// output it is the replay's own ATE; from a stamp on, only those frames are
+// aligned and counted; past the last frame there is nothing to evaluate.
+TEST(EstimatorStart, AteFromCountsTheFramesFromAStampOn) {
+  const Simulation sim = Simulate(Preset("motion_stereo", 3.0));
+  const testing::SimReplay run =
+      testing::ReplaySimulation(sim, testing::OptionsFor(sim.options));
+  double all = -1.0;
+  ASSERT_TRUE(testing::AteFrom(sim, run.outputs, INT64_MIN, &all));
+  EXPECT_DOUBLE_EQ(all, run.ate_rmse_m);
+  const int64_t last = run.outputs.back().t_ns;
+  double none = -1.0;
+  EXPECT_FALSE(testing::AteFrom(sim, run.outputs, last + 1, &none));
+  double tail = -1.0;
+  ASSERT_TRUE(testing::AteFrom(sim, run.outputs, last - 1'000'000'000, &tail));
+  EXPECT_GT(tail, 0.0);
+  EXPECT_NE(tail, all);
+}
+
 // Degenerate motion: no start is accepted, and the log says why.
 testing::SimReplay ExpectRefused(const std::string& preset,
                                  InitFailure reason, bool gyro_aided = false,
