@@ -71,6 +71,8 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   record.method = start.method;
   record.restart = restart;
   record.diagnostics = start.diagnostics;
+  record.diagnostics.initial_b_a = start.frames.back().b_a;
+  record.diagnostics.initial_b_g = start.frames.back().b_g;
   if (start.frames.size() == 1) {
     // The static start: one frame, at rest.
     const InitialFrame& s = start.frames.front();

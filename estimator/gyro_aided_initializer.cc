@@ -7,7 +7,9 @@
 #include <map>
 #include <stdexcept>
 
+#include "estimator/gyro_aided_parallax.h"
 #include "estimator/gyro_aided_solver.h"
+#include "estimator/gyro_bias_from_rotations.h"
 #include "estimator/in_motion_start.h"
 #include "estimator/visual_inertial_alignment.h"
 
@@ -47,32 +49,6 @@ std::vector<GyroAidedTrack> TracksOf(const std::vector<BufferedFrame>& frames,
     if (t.sightings.size() >= 2) tracks.push_back(std::move(t));
   }
   return tracks;
-}
-
-// A track's largest parallax against its anchor once the fitted rotation is
-// taken out: the distance between a later sighting and where the anchor's
-// ray would appear under rotation alone [px].
-double TrackParallaxPx(const GyroAidedProblem& problem,
-                       const GyroAidedSolution& solution,
-                       const GyroAidedTrack& track) {
-  const Eigen::Matrix3d R_b_c = problem.T_b_c.linear();
-  const GyroAidedSighting& a = track.sightings.front();
-  const Eigen::Matrix3d R_v_ca =
-      FrameState(problem, solution, a.frame).R_v_b * R_b_c;
-  const Eigen::Vector3d ray_v =
-      R_v_ca * Eigen::Vector3d(a.xy.x(), a.xy.y(), 1.0);
-  double largest = 0.0;
-  for (size_t i = 1; i < track.sightings.size(); ++i) {
-    const GyroAidedSighting& s = track.sightings[i];
-    const Eigen::Matrix3d R_v_c =
-        FrameState(problem, solution, s.frame).R_v_b * R_b_c;
-    const Eigen::Vector3d ray_c = R_v_c.transpose() * ray_v;
-    const double px =
-        ray_c.z() > 0.0 ? problem.focal_px * (ray_c.hnormalized() - s.xy).norm()
-                        : std::numeric_limits<double>::infinity();
-    largest = std::max(largest, px);
-  }
-  return largest;
 }
 
 // Relative std of the spread S = sqrt(1/n sum |p_k - c|^2) of the given
@@ -148,17 +124,12 @@ InitAttempt GyroAidedInitializer::TryInitialize(
   // with state_prior's 0.2 m/s^2, the fit was measured to wander (the bias
   // 0.2 rad/s off on the hand-held preset, docs/initialisation.md).
   problem.accel_bias_sigma = 0.0;
+  // The cheap checks first (the selected intervals' excitation, the
+  // tracks counted), then the IMU from the first frame to every frame of
+  // the window (~40 preintegrations over up to 2 s each: measured ~30 ms a
+  // frame, which a sequence that never starts paid at every frame).
   std::vector<ImuPreintegration> intervals;
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  try {
-    for (int k = first + 1; k <= last; ++k) {
-      problem.from_first.emplace_back(frames[first].t_imu_ns,
-                                      frames[k].t_imu_ns, imu, zero, zero,
-                                      noise_, preintegration_);
-    }
-  } catch (const std::invalid_argument&) {
-    return failed(InitFailure::kImuUnavailable, 0.0, 0.0);
-  }
   if (!PreintegrateSelected(frames, selected, imu, noise_, preintegration_,
                             &intervals)) {
     return failed(InitFailure::kImuUnavailable, 0.0, 0.0);
@@ -176,10 +147,37 @@ InitAttempt GyroAidedInitializer::TryInitialize(
     return failed(InitFailure::kFewCorrespondences,
                   static_cast<double>(problem.tracks.size()), min_tracks);
   }
+  try {
+    for (int k = first + 1; k <= last; ++k) {
+      problem.from_first.emplace_back(frames[first].t_imu_ns,
+                                      frames[k].t_imu_ns, imu, zero, zero,
+                                      noise_, preintegration_);
+    }
+  } catch (const std::invalid_argument&) {
+    return failed(InitFailure::kImuUnavailable, 0.0, 0.0);
+  }
   const double g = options_.gravity_magnitude;
   problem.gravity_magnitude = g;
+  // The bias from the rotations alone is cheap (no depths, no velocity);
+  // the fit on the reprojection errors that follows is not (in the unit
+  // tests ~2.5 s against ~0.1 s for all before it). A pure rotation is
+  // refused here, on the parallax that bias leaves, so that a sequence that
+  // never starts does not pay the fit at every frame (sim_rotation's 15 s
+  // took 145 s with the fit at every frame, docs/initialisation.md).
+  Eigen::Vector3d b_g_rotations = zero;
+  if (!FitGyroBiasFromRotations(problem, &b_g_rotations)) {
+    return failed(InitFailure::kScaleUncertain, 1.0, m.max_scale_uncertainty);
+  }
+  const double precheck_parallax =
+      MedianRotationParallaxPx(problem, b_g_rotations);
+  window->diagnostics.parallax_px = precheck_parallax;
+  if (!(precheck_parallax >= m.gyro_min_parallax_px)) {
+    return failed(InitFailure::kLowParallax, precheck_parallax,
+                  m.gyro_min_parallax_px);
+  }
   GyroAidedSolution solution;
-  if (!FitGyroAided(&problem, zero, &solution)) {
+  window->diagnostics.full_fit = true;
+  if (!FitGyroAidedFromRotationBias(&problem, b_g_rotations, &solution)) {
     return failed(InitFailure::kScaleUncertain, 1.0, m.max_scale_uncertainty);
   }
   // A pure rotation leaves no parallax once the fitted rotation is out.

@@ -43,7 +43,9 @@
 // (mono.min_span_s), IMU excitation (mono.min_imu_excitation), tracks seen
 // twice (mono.gyro_min_tracks: too few correspondences), their median
 // rotation-compensated parallax (mono.gyro_min_parallax_px: a pure rotation
-// leaves none), tracks left after outliers are dropped (too few inliers),
+// leaves none; judged first at the bias fitted to the rotations alone, a
+// cheap precheck before the costly fit, then at the fitted bias), tracks
+// left after outliers are dropped (too few inliers),
 // the reprojection RMS (mono.max_reprojection_rms_px), the landmarks in
 // front (negative scale: the median depth), the relative std of the
 // window's spread from the solution's covariance (mono.max_scale_uncertainty:

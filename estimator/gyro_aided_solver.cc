@@ -491,15 +491,23 @@ bool SolveAtBias(const GyroAidedProblem& problem, const Eigen::Vector3d& b_g,
 
 bool FitGyroAided(GyroAidedProblem* problem, const Eigen::Vector3d& b_g_guess,
                   GyroAidedSolution* out) {
+  // The bias from the rotations alone first (the fit on the reprojection
+  // errors, started from zero, was measured to stop in a wrong minimum).
   Eigen::Vector3d b_g = b_g_guess;
+  if (!FitGyroBiasFromRotations(*problem, &b_g)) return false;
+  return FitGyroAidedFromRotationBias(problem, b_g, out);
+}
+
+bool FitGyroAidedFromRotationBias(GyroAidedProblem* problem,
+                                  const Eigen::Vector3d& b_g_rotations,
+                                  GyroAidedSolution* out) {
+  Eigen::Vector3d b_g = b_g_rotations;
   GyroAidedSolution solution;
   const GyroAidedSolution* weights = nullptr;
-  // The bias from the rotations alone first (the fit below, started from
-  // zero, was measured to stop in a wrong minimum); then two passes of the
-  // fit on the reprojection errors, the first with unit depths in the
-  // linear start, the IMU re-propagated at the bias after each.
+  // Two passes of the fit on the reprojection errors, the first with unit
+  // depths in the linear start, the IMU re-propagated at the bias after
+  // each.
   constexpr int kPasses = 2;
-  if (!FitGyroBiasFromRotations(*problem, &b_g)) return false;
   for (int pass = 0; pass < kPasses; ++pass) {
     if (!FitBias(*problem, weights, &b_g)) return false;
     for (ImuPreintegration& imu : problem->from_first) {

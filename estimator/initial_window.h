@@ -51,6 +51,13 @@ struct InitDiagnostics {
   // mono: from the long window (init.mono.long_window_s), whose start waits
   // for max_refined_scale_uncertainty; false: the fallback window.
   bool long_window = false;
+  // gyro-aided: its costly fit on the reprojection errors ran (false when
+  // a cheaper check refused the attempt first).
+  bool full_fit = false;
+  // The initialiser's biases at the newest frame, before the joint
+  // adjustment (what it handed on) [m/s^2, rad/s].
+  Eigen::Vector3d initial_b_a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d initial_b_g = Eigen::Vector3d::Zero();
 };
 
 struct InitialWindow {

@@ -12,11 +12,17 @@
 //           configuration (stereo with use_stereo, else mono): whichever is
 //           ready first and passes its checks.
 // With init.mono.gyro_aided, a failed mono attempt is followed at the same
-// frame by the gyroscope-aided one (gyro_aided_initializer.h).
+// frame by the gyroscope-aided one (gyro_aided_initializer.h), except for
+// kGyroAidedRetryAfterNoParallaxS after it refused a window for showing no
+// translation at its cheap precheck (the frames then are mostly the same),
+// twice that after a second such refusal in a row, and so on up to
+// init.mono.window_s.
 // Every failed attempt is appended to the log as data (init_attempt.h): at
 // most one per method and frame.
 
 #include <Eigen/Geometry>
+#include <climits>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -30,6 +36,12 @@
 #include "estimator/zero_velocity.h"
 
 namespace vio {
+
+// How long the gyroscope-aided start waits after its precheck found no
+// translation in the window before it tries again: at 20 Hz five frames, an
+// eighth of its 2 s window new; doubled at each such refusal in a row, up to
+// the window's length [s].
+constexpr double kGyroAidedRetryAfterNoParallaxS = 0.25;
 
 class Initialization {
  public:
@@ -69,6 +81,9 @@ class Initialization {
   std::unique_ptr<StereoInitializer> stereo_;
   std::unique_ptr<GyroAidedInitializer> gyro_aided_;  // mono's fallback
   std::vector<BufferedFrame> frames_;
+  // No gyroscope-aided attempt before this frame stamp [ns].
+  int64_t gyro_aided_next_ns_ = INT64_MIN;
+  double gyro_aided_wait_s_ = 0.0;  // the last wait set, 0: none [s]
 };
 
 }  // namespace vio

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "config/simulator_config.h"
@@ -129,14 +131,36 @@ TEST(EstimatorStart, StereoStartsInMotionWithinHalfASecond) {
   EXPECT_LT(run.ate_rmse_m, 0.05);
 }
 
-// Degenerate motion: no start is accepted, and the log says why.
-void ExpectRefused(const std::string& preset, InitFailure reason) {
-  const Simulation sim = Simulate(Preset(preset, 5.0));
+// testing::AteFrom (init_benchmark --against-default): from before the first
+// output it is the replay's own ATE; from a stamp on, only those frames are
+// aligned and counted; past the last frame there is nothing to evaluate.
+TEST(EstimatorStart, AteFromCountsTheFramesFromAStampOn) {
+  const Simulation sim = Simulate(Preset("motion_stereo", 3.0));
   const testing::SimReplay run =
       testing::ReplaySimulation(sim, testing::OptionsFor(sim.options));
+  double all = -1.0;
+  ASSERT_TRUE(testing::AteFrom(sim, run.outputs, INT64_MIN, &all));
+  EXPECT_DOUBLE_EQ(all, run.ate_rmse_m);
+  const int64_t last = run.outputs.back().t_ns;
+  double none = -1.0;
+  EXPECT_FALSE(testing::AteFrom(sim, run.outputs, last + 1, &none));
+  double tail = -1.0;
+  ASSERT_TRUE(testing::AteFrom(sim, run.outputs, last - 1'000'000'000, &tail));
+  EXPECT_GT(tail, 0.0);
+  EXPECT_NE(tail, all);
+}
+
+// Degenerate motion: no start is accepted, and the log says why.
+testing::SimReplay ExpectRefused(const std::string& preset,
+                                 InitFailure reason, bool gyro_aided = false,
+                                 double seconds = 5.0) {
+  const Simulation sim = Simulate(Preset(preset, seconds));
+  EstimatorOptions options = testing::OptionsFor(sim.options);
+  options.init.mono.gyro_aided = gyro_aided;
+  const testing::SimReplay run = testing::ReplaySimulation(sim, options);
   EXPECT_TRUE(run.summary.starts.empty()) << preset;
   EXPECT_EQ(run.summary.frames_before_init, run.summary.frames);
-  ASSERT_FALSE(run.summary.init_attempts.empty());
+  EXPECT_FALSE(run.summary.init_attempts.empty());
   // The static start is tried too (and refused: the features move); of the
   // in-motion attempts, most fail for `reason`.
   int in_motion = 0, with_reason = 0;
@@ -151,6 +175,7 @@ void ExpectRefused(const std::string& preset, InitFailure reason) {
       << preset << ": " << DescribeNoStart(run.summary);
   EXPECT_NE(DescribeNoStart(run.summary).find(InitFailureName(reason)),
             std::string::npos);
+  return run;
 }
 
 TEST(EstimatorStart, ConstantVelocityIsRefusedForLackOfExcitation) {
@@ -165,6 +190,40 @@ TEST(EstimatorStart, PlanarCircleIsRefusedForLackOfExcitation) {
   // Constant speed and turn rate, no roll or pitch: a constant specific
   // force in the body frame, which the accelerometer bias could absorb.
   ExpectRefused("circle", InitFailure::kLowImuExcitation);
+}
+
+// With the gyroscope-aided fallback on, the degenerate presets are refused
+// too. The pure rotation over its 15 s: with gyro_min_parallax_px at 4 px the
+// fallback started sim_rotation's 15 s at 9.4 s (its parallax there, the
+// camera's lever arm and noise, is 3.6-4.6 px); and after a window showed no
+// translation the fallback waits kGyroAidedRetryAfterNoParallaxS before it
+// tries again, doubled at each such refusal up to the window's 2 s (it paid
+// ~0.1 s at every frame).
+TEST(EstimatorStart, DegenerateMotionIsRefusedWithTheGyroAidedFallbackToo) {
+  ExpectRefused("line", InitFailure::kLowImuExcitation, true);
+  ExpectRefused("circle", InitFailure::kLowImuExcitation, true);
+  const testing::SimReplay run =
+      ExpectRefused("rotation", InitFailure::kLowParallax, true, 15.0);
+  int gyro = 0;
+  int64_t last = INT64_MIN, closest = INT64_MAX, widest = 0;
+  for (const InitAttempt& a : run.summary.init_attempts) {
+    if (a.method != InitMethod::kGyroAided ||
+        a.reason == InitFailure::kTooFewFrames) {
+      continue;
+    }
+    ++gyro;
+    if (last != INT64_MIN) {
+      closest = std::min(closest, a.t_ns - last);
+      widest = std::max(widest, a.t_ns - last);
+    }
+    last = a.t_ns;
+  }
+  // 13.5 s after the span fills (270 frames): waits of 0.25, 0.5, 1, 2, 2,
+  // ... s, never longer than the window (a start is delayed by at most it).
+  EXPECT_GE(gyro, 5);
+  EXPECT_LE(gyro, 14);
+  EXPECT_GE(closest, std::llround(kGyroAidedRetryAfterNoParallaxS * 1e9));
+  EXPECT_LE(widest, std::llround(2.05e9));
 }
 
 TEST(EstimatorStart, StillStartIsHeldStillByTheZeroMotionFactor) {

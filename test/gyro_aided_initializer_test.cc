@@ -186,6 +186,20 @@ TEST(GyroAidedInitializer, RefusesAPureRotation) {
   EXPECT_EQ(a.method, InitMethod::kGyroAided);
   EXPECT_EQ(a.reason, InitFailure::kLowParallax) << DescribeInitAttempt(a);
   EXPECT_LT(a.value, a.limit);
+  // Refused by the cheap precheck (the parallax left at the bias fitted to
+  // the rotations alone), before the costly fit on the reprojection errors:
+  // a sequence that never starts must not pay that fit at every frame.
+  EXPECT_FALSE(w.diagnostics.full_fit);
+  EXPECT_EQ(w.diagnostics.parallax_px, a.value);
+}
+
+// The precheck lets a translating camera through to the fit.
+TEST(GyroAidedInitializer, PrecheckPassesAMovingCamera) {
+  const Simulation sim = Simulate(HandHeld(true, 7));
+  InitialWindow w;
+  const InitAttempt a = TryStart(sim, Options(sim), 2.0, &w);
+  EXPECT_TRUE(w.diagnostics.full_fit) << DescribeInitAttempt(a);
+  EXPECT_GE(w.diagnostics.parallax_px, Options(sim).init.mono.gyro_min_parallax_px);
 }
 
 TEST(GyroAidedInitializer, RefusesTooFewTracks) {

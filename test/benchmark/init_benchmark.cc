@@ -26,11 +26,14 @@
 //                  [--max-scale-sigma X] [--min-parallax PX]
 //                  [--min-correspondences N] [--gyro-aided 0|1]
 //                  [--gyro-max-change-sigmas K]
+//                  [--against-default] [--gyro-min-parallax PX]
+//                  [--attempts]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <stdexcept>
@@ -53,6 +56,9 @@ struct Args {
   int seeds = 20;
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
+  // With --ate: also replay in motion with the preset's default options and
+  // compare on the frames both runs estimate (from the later first start).
+  bool against_default = false;
   bool verbose = false;
   bool diagnose = false;  // per attempt: pairs, parallax, truth
   // init.mono.long_window_s and max_refined_scale_uncertainty (< 0: the
@@ -66,6 +72,11 @@ struct Args {
   int gyro_aided = -1;
   // init.mono.gyro_max_refine_change_sigmas (< 0: the default).
   double gyro_max_change_sigmas = -1.0;
+  // init.mono.gyro_min_parallax_px (< 0: the default).
+  double gyro_min_parallax_px = -1.0;
+  // --verbose: also every refused attempt of the trial (method, time,
+  // reason, value), to measure a check's values.
+  bool attempts = false;
 };
 
 EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
@@ -84,6 +95,9 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   if (args.gyro_aided >= 0) o.init.mono.gyro_aided = args.gyro_aided > 0;
   if (args.gyro_max_change_sigmas > 0.0) {
     o.init.mono.gyro_max_refine_change_sigmas = args.gyro_max_change_sigmas;
+  }
+  if (args.gyro_min_parallax_px >= 0.0) {
+    o.init.mono.gyro_min_parallax_px = args.gyro_min_parallax_px;
   }
   return o;
 }
@@ -104,6 +118,8 @@ Args Parse(int argc, char** argv) {
       a.seconds = std::stod(value());
     } else if (s == "--ate") {
       a.ate = true;
+    } else if (s == "--against-default") {
+      a.against_default = true;
     } else if (s == "--long-window") {
       a.long_window_s = std::stod(value());
     } else if (s == "--max-scale-sigma") {
@@ -116,6 +132,10 @@ Args Parse(int argc, char** argv) {
       a.gyro_aided = std::stoi(value());
     } else if (s == "--gyro-max-change-sigmas") {
       a.gyro_max_change_sigmas = std::stod(value());
+    } else if (s == "--gyro-min-parallax") {
+      a.gyro_min_parallax_px = std::stod(value());
+    } else if (s == "--attempts") {
+      a.attempts = true;
     } else if (s == "--diagnose") {
       a.diagnose = true;
     } else if (s == "--verbose") {
@@ -196,6 +216,17 @@ void Diagnose(const Simulation& sim,
   }
 }
 
+// --attempts: one line per refused attempt (not the span's).
+void PrintAttempts(const EstimatorSummary& summary, int64_t t0_ns) {
+  for (const InitAttempt& a : summary.init_attempts) {
+    if (a.reason == InitFailure::kTooFewFrames) continue;
+    std::printf("    attempt %s t %.2f: %s %.4g (limit %.4g)\n",
+                InitMethodName(a.method),
+                1e-9 * static_cast<double>(a.t_ns - t0_ns),
+                InitFailureName(a.reason), a.value, a.limit);
+  }
+}
+
 struct Trial {
   bool started = false;
   double time_s = 0.0;
@@ -206,6 +237,8 @@ struct Trial {
   double scale_sigma = -1.0;  // predicted by the joint adjustment
   double own_sigma = -1.0;    // the initialiser's own (before it)
   double accel_bias = 0.0;    // |b_a - b_a true| at the newest frame
+  double initial_gyro_bias = 0.0;  // the initialiser's, before the adjustment
+  double parallax_px = 0.0;        // the start's own parallax measure
   InitMethod method = InitMethod::kAuto;
   std::string failures;
 };
@@ -248,6 +281,7 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   const EstimatorSummary& summary = estimator.summary();
   if (summary.starts.empty()) {
     t.failures = DescribeNoStart(summary);
+    if (args.attempts) PrintAttempts(summary, prepared.frames[0].t_ns);
     return t;
   }
   const StartRecord& start = summary.starts.front();
@@ -275,9 +309,12 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   t.scale_sigma = start.diagnostics.refined_scale_sigma;
   t.own_sigma = start.diagnostics.scale_uncertainty;
   t.accel_bias = (newest.b_a - gt.b_a).norm();
+  t.initial_gyro_bias = (start.diagnostics.initial_b_g - gt.b_g).norm();
+  t.parallax_px = start.diagnostics.parallax_px;
   if (!summary.init_attempts.empty()) {
     t.failures = DescribeInitFailures(summary.init_attempts);
   }
+  if (args.attempts) PrintAttempts(summary, prepared.frames[0].t_ns);
   return t;
 }
 
@@ -301,11 +338,13 @@ void StartFigures(const std::string& preset, const Args& args) {
       if (t.started) {
         std::printf(
             " (%s) after %.2f s, scale %+.2f %% (alignment %+.2f %%), "
-            "gravity %.3f deg, b_g %.5f, b_a %.3f, predicted scale sigma "
-            "%.2f %% (initialiser's own %.2f %%)",
+            "gravity %.3f deg, b_g %.5f (initialiser's %.5f), b_a %.3f, "
+            "predicted scale sigma %.2f %% (initialiser's own %.2f %%), "
+            "parallax %.2f px",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
             100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
-            t.accel_bias, 100 * t.scale_sigma, 100 * t.own_sigma);
+            t.initial_gyro_bias, t.accel_bias, 100 * t.scale_sigma,
+            100 * t.own_sigma, t.parallax_px);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }
@@ -350,6 +389,28 @@ void AteFigures(const std::string& preset, const Args& args) {
         testing::ReplaySimulation(Simulate(r), OptionsOf(r, args));
     moving.Add(a.ate_rmse_m);
     rest.Add(b.ate_rmse_m);
+    if (args.against_default) {
+      const Simulation sim = Simulate(o);
+      const testing::SimReplay d =
+          testing::ReplaySimulation(sim, testing::OptionsFor(o));
+      const int64_t t0 = sim.ground_truth.front().t_ns;
+      auto first_start = [&](const testing::SimReplay& r) {
+        return r.summary.starts.empty() ? INT64_MAX
+                                        : r.summary.starts.front().t_ns;
+      };
+      const int64_t common = std::max(first_start(a), first_start(d));
+      double ate_a = -1.0, ate_d = -1.0;
+      testing::AteFrom(sim, a.outputs, common, &ate_a);
+      testing::AteFrom(sim, d.outputs, common, &ate_d);
+      std::printf(
+          "    against the default options: start %.2f s (default %.2f s), "
+          "ATE whole run %.4f m (default %.4f m, ratio %.3f), on the frames "
+          "both estimate %.4f m (default %.4f m, ratio %.3f)\n",
+          1e-9 * static_cast<double>(first_start(a) - t0),
+          1e-9 * static_cast<double>(first_start(d) - t0), a.ate_rmse_m,
+          d.ate_rmse_m, a.ate_rmse_m / d.ate_rmse_m, ate_a, ate_d,
+          ate_a / ate_d);
+    }
     std::printf(
         "  %s seed %u: ATE in motion %.4f m (resets %lld), from rest "
         "%.4f m (resets %lld)\n",

@@ -1,5 +1,6 @@
 #include "test/testing/sim_replay.h"
 
+#include <cstdint>
 #include <utility>
 
 #include "dataset/trajectory.h"
@@ -66,6 +67,29 @@ SimReplay Run(const Simulation& simulation, const EstimatorOptions& options,
 
 }  // namespace
 
+bool AteFrom(const Simulation& simulation,
+             const std::vector<EstimatorOutput>& outputs, int64_t t_from_ns,
+             double* ate_rmse_m, double* rpe_rmse_m) {
+  Trajectory estimate, truth;
+  for (const EstimatorOutput& o : outputs) {
+    if (o.processed && o.initialized && o.t_ns >= t_from_ns)
+      estimate.push_back({o.t_ns, o.p_w_b, o.q_w_b});
+  }
+  for (const StampedState& s : simulation.ground_truth)
+    truth.push_back(PoseOf(s));
+  if (estimate.size() < 3) return false;
+  const Association a = Associate(estimate, truth);
+  const Alignment align =
+      Align(a.estimate, a.ground_truth, AlignmentMode::kPosYaw);
+  const Trajectory aligned = align.Apply(a.estimate);
+  *ate_rmse_m = ComputeAte(aligned, a.ground_truth).translation.rmse;
+  if (rpe_rmse_m != nullptr) {
+    *rpe_rmse_m = ComputeRpe(aligned, a.ground_truth, 1.0, RpeUnit::kMeters)
+                      .translation.rmse;
+  }
+  return true;
+}
+
 SimReplay ReplayWithCameras(const Simulation& simulation,
                             const EstimatorOptions& options,
                             const std::vector<EstimatorCamera>& cameras) {
@@ -94,21 +118,10 @@ SimReplay Run(const Simulation& simulation, const EstimatorOptions& options,
   r.time_offset_s = estimator.time_offset_s();
   r.T_b_c0 = estimator.T_b_c(0);
 
-  Trajectory estimate, truth;
-  for (const EstimatorOutput& o : r.outputs) {
-    if (o.processed && o.initialized)
-      estimate.push_back({o.t_ns, o.p_w_b, o.q_w_b});
+  if (!AteFrom(simulation, r.outputs, INT64_MIN, &r.ate_rmse_m,
+               &r.rpe_rmse_m)) {
+    return r;
   }
-  for (const StampedState& s : simulation.ground_truth)
-    truth.push_back(PoseOf(s));
-  if (estimate.size() < 3) return r;
-  const Association a = Associate(estimate, truth);
-  const Alignment align =
-      Align(a.estimate, a.ground_truth, AlignmentMode::kPosYaw);
-  const Trajectory aligned = align.Apply(a.estimate);
-  r.ate_rmse_m = ComputeAte(aligned, a.ground_truth).translation.rmse;
-  r.rpe_rmse_m = ComputeRpe(aligned, a.ground_truth, 1.0, RpeUnit::kMeters)
-                     .translation.rmse;
   // Biases at the last estimate against the truth at that stamp.
   const EstimatorOutput& last = r.outputs.back();
   const StampedState* gt = &simulation.ground_truth.front();

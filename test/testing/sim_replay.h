@@ -55,6 +55,14 @@ SimReplay ReplayWithCameras(const Simulation& simulation,
                             const EstimatorOptions& options,
                             const std::vector<EstimatorCamera>& cameras);
 
+// ATE (and, with rpe_rmse_m, RPE over 1 m) of the initialised outputs from
+// t_from_ns on against the simulation's truth, posyaw-aligned on those
+// frames alone [m]: to compare two runs on the frames both estimate. False
+// with fewer than three such outputs.
+bool AteFrom(const Simulation& simulation,
+             const std::vector<EstimatorOutput>& outputs, int64_t t_from_ns,
+             double* ate_rmse_m, double* rpe_rmse_m = nullptr);
+
 // Replay of the simulation as it is.
 SimReplay ReplaySimulation(const Simulation& simulation,
                            const EstimatorOptions& options);
