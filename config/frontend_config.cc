@@ -42,6 +42,7 @@ StereoMatcherOptions ReadStereoMatcher(const YamlNode& node) {
   o.equalize = node.Get<bool>("equalize");
   o.max_reverse_px = node.Get<double>("max_reverse_px");
   o.max_epipolar_px = node.Get<double>("max_epipolar_px");
+  o.start_from_previous = node.Get<bool>("start_from_previous");
   ValidateAt(node, o);
   return o;
 }

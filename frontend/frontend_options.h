@@ -74,8 +74,11 @@ struct FeatureTrackerOptions {
 struct StereoMatcherOptions {
   // A 15 px window: the matched images are taken at the same instant, so
   // the patch does not deform as along a track, and it costs half of the
-  // tracker's 21 px window per iteration (docs/frontend.md).
-  KltOptions klt = {15};
+  // tracker's 21 px window per iteration (docs/frontend.md). 7 iterations
+  // per level: most matches converge in fewer, and the points that do not
+  // (occluded, out of view) spent most of the match's time in up to 30
+  // (docs/speed.md, fifth pass).
+  KltOptions klt = {15, 3, 7};
   // Equalise the histograms of both images before matching
   // (cv::equalizeHist). The two cameras expose differently (mean grey 145
   // against 130 on V1_01) and LK assumes equal brightness: on the first
@@ -87,6 +90,12 @@ struct StereoMatcherOptions {
   // Distance of the right observation to the epipolar line of the left one,
   // measured on the undistorted right image [px].
   double max_epipolar_px = 1.0;
+  // Start the left -> right LK of a feature matched in the previous frame at
+  // its previous offset from the left pixel (the disparity changes little
+  // from frame to frame) instead of at the left pixel itself; features
+  // without a previous match start at their left pixel. LK then needs fewer
+  // iterations per level (docs/speed.md, fifth pass).
+  bool start_from_previous = true;
 
   bool Validate(std::string* message) const;
 };

@@ -9,6 +9,7 @@
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "frontend/feature_tracker.h"
@@ -221,6 +222,46 @@ TEST_F(RealStereoPairs, ReusedBuffersMatchAsFreshOnes) {
     EXPECT_EQ(reused[i].uv, fresh[i].uv) << "match " << i;
   }
   EXPECT_EQ(reused_stats.lost_reverse, fresh_stats.lost_reverse);
+}
+
+// A start at each feature's own left pixel is where OpenCV starts a point
+// without a guess: the same matches bit for bit. A start of the wrong size
+// is refused, naming both sizes.
+TEST_F(RealStereoPairs, StartAtTheLeftPixelsMatchesAsWithoutAStart) {
+  const StereoMatcher matcher{CameraModel(cam0_), CameraModel(cam1_),
+                              StereoMatcherOptions()};
+  const cv::Mat left = testing::V101Image(0, 10);
+  const StereoImage l = matcher.PrepareLeft(left);
+  const StereoImage r = matcher.PrepareRight(testing::V101Image(1, 10));
+  const std::vector<FeatureObservation> features = LeftFeatures(left);
+  std::vector<cv::Point2f> start;
+  for (const FeatureObservation& o : features) {
+    start.emplace_back(static_cast<float>(o.uv.x()),
+                       static_cast<float>(o.uv.y()));
+  }
+  StereoStats plain_stats, started_stats;
+  const std::vector<FeatureObservation> plain =
+      matcher.Match(l, r, features, &plain_stats);
+  const std::vector<FeatureObservation> started =
+      matcher.Match(l, r, features, start, &started_stats);
+  ASSERT_GT(plain.size(), 50u);
+  ASSERT_EQ(started.size(), plain.size());
+  for (size_t i = 0; i < plain.size(); ++i) {
+    EXPECT_EQ(started[i].feature_id, plain[i].feature_id);
+    EXPECT_EQ(started[i].uv, plain[i].uv);  // ==, bit for bit
+  }
+  EXPECT_EQ(started_stats.lost_reverse, plain_stats.lost_reverse);
+  start.pop_back();
+  try {
+    matcher.Match(l, r, features, start);
+    FAIL() << "a start of the wrong size was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(std::to_string(start.size()) +
+                                         " start pixels for " +
+                                         std::to_string(features.size())),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
