@@ -87,6 +87,11 @@ struct StereoMatcherOptions {
   bool equalize = true;
   // Matching right -> left must return within this distance [px].
   double max_reverse_px = 0.5;
+  // Pyramid levels above full resolution of that reverse LK [-]. It starts
+  // at the left pixel, where a good match returns, so it needs no coarse
+  // levels to reach it: 0 costs a quarter of klt.pyramid_levels + 1 levels
+  // (docs/speed.md, fifth pass). At most klt.pyramid_levels.
+  int reverse_pyramid_levels = 0;
   // Distance of the right observation to the epipolar line of the left one,
   // measured on the undistorted right image [px].
   double max_epipolar_px = 1.0;

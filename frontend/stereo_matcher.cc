@@ -143,8 +143,9 @@ std::vector<FeatureObservation> StereoMatcher::Match(
   // OpenCV starts a point without a guess at its own position, so a start
   // equal to the left pixel gives the unguided match bit for bit.
   TrackKlt(left.pyramid, right.pyramid, options_.klt, uv0, start, &uv1, &ok);
-  TrackKlt(right.pyramid, left.pyramid, options_.klt, uv1, uv0, &back,
-           &ok_back);
+  KltOptions reverse = options_.klt;
+  reverse.pyramid_levels = options_.reverse_pyramid_levels;
+  TrackKlt(right.pyramid, left.pyramid, reverse, uv1, uv0, &back, &ok_back);
 
   const double max_reverse2 = options_.max_reverse_px * options_.max_reverse_px;
   const int w = right_.calibration().width, h = right_.calibration().height;

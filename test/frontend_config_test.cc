@@ -69,6 +69,10 @@ TEST(FrontendConfig, ReadsEveryKey) {
   EXPECT_FALSE(ReadText(DefaultWith("anchor_refinement: true",
                                     "anchor_refinement: false"))
                    .tracker.anchor_refinement);
+  EXPECT_EQ(ReadText(DefaultWith("reverse_pyramid_levels: 0",
+                                 "reverse_pyramid_levels: 2"))
+                .stereo_matcher.reverse_pyramid_levels,
+            2);
   EXPECT_FALSE(ReadText(DefaultWith("start_from_previous: true",
                                     "start_from_previous: false"))
                    .stereo_matcher.start_from_previous);
@@ -106,6 +110,7 @@ TEST(FrontendConfig, ShippedFilesEqualTheBuiltInTracker) {
         LoadFrontendOptions(ConfigFile(name)).stereo_matcher;
     const StereoMatcherOptions dm;
     EXPECT_EQ(m.start_from_previous, dm.start_from_previous) << name;
+    EXPECT_EQ(m.reverse_pyramid_levels, dm.reverse_pyramid_levels) << name;
     EXPECT_EQ(m.klt.max_iterations, dm.klt.max_iterations) << name;
     EXPECT_EQ(m.klt.window_px, dm.klt.window_px) << name;
   }
