@@ -25,31 +25,7 @@ bool IsFolder(const std::string& path) {
   return fs::is_directory(path, ec);
 }
 
-void RequireFile(const std::string& path) {
-  if (!IsFile(path)) throw DatasetError(path + ": no such file");
-}
-
-void RequireIncreasing(const CsvReader& csv, bool first, int64_t previous,
-                       int64_t t_ns) {
-  if (first) return;
-  if (t_ns == previous) {
-    csv.Fail("timestamp " + std::to_string(t_ns) + " is repeated");
-  }
-  if (t_ns < previous) {
-    csv.Fail("timestamp " + std::to_string(t_ns) +
-             " is before the previous one (" + std::to_string(previous) + ")");
-  }
-}
-
-void RequireFieldCount(const CsvReader& csv, size_t n, const char* what) {
-  csv.ExpectAtLeast(n);
-  if (csv.size() != n) {
-    csv.Fail("expected " + std::to_string(n) + " fields (" + what + "), got " +
-             std::to_string(csv.size()));
-  }
-}
-
-EurocCamera ReadCamera(const std::string& folder, int index) {
+EurocCamera ReadCamera(const std::string& folder, int index, bool keep_images) {
   EurocCamera camera;
   camera.index = index;
   camera.folder = folder;
@@ -62,8 +38,13 @@ EurocCamera ReadCamera(const std::string& folder, int index) {
                        ": holds neither data.csv (images) nor features.csv");
   }
   if (camera.has_images) {
-    camera.images = ReadEurocImageList(list, JoinPath(folder, "data"),
-                                       &camera.missing_images);
+    ImageListStream stream(list, JoinPath(folder, "data"));
+    ImageEntry entry;
+    while (stream.Next(&entry)) {
+      if (camera.image_count++ == 0) camera.first_image_ns = entry.t_ns;
+      if (keep_images) camera.images.push_back(std::move(entry));
+    }
+    camera.missing_images = stream.missing();
   }
   if (camera.has_features) {
     camera.feature_frames = ReadFeaturesCsv(features, index);
@@ -75,10 +56,10 @@ EurocCamera ReadCamera(const std::string& folder, int index) {
 // largest int64_t otherwise).
 int64_t EarliestStamp(const EurocData& data, int64_t gt_first_ns) {
   int64_t start = gt_first_ns;
-  if (!data.imu.empty()) start = data.imu.front().t_ns;
+  if (data.imu_count > 0) start = data.imu_first_ns;
   for (const EurocCamera& camera : data.cameras) {
-    if (!camera.images.empty()) {
-      start = std::min(start, camera.images.front().t_ns);
+    if (camera.image_count > 0) {
+      start = std::min(start, camera.first_image_ns);
     }
     if (!camera.feature_frames.empty()) {
       start = std::min(start, camera.feature_frames.front().t_ns);
@@ -98,53 +79,21 @@ std::string JoinPath(const std::string& folder, const std::string& name) {
 
 std::vector<ImuSample> ReadEurocImu(const std::string& path,
                                     ImuStampReport* report) {
-  RequireFile(path);
-  CsvReader csv(path);
-  std::vector<ImuLine> lines;
-  while (csv.Next()) {
-    RequireFieldCount(csv, 7, "timestamp, 3 angular rates, 3 accelerations");
-    ImuSample s;
-    s.t_ns = csv.Int64(0);
-    if (report == nullptr) {
-      RequireIncreasing(csv, lines.empty(),
-                        lines.empty() ? 0 : lines.back().sample.t_ns, s.t_ns);
-    }
-    s.gyr = {csv.Double(1), csv.Double(2), csv.Double(3)};
-    s.acc = {csv.Double(4), csv.Double(5), csv.Double(6)};
-    lines.push_back({s, csv.line()});
-  }
-  if (lines.empty()) throw DatasetError(path + ": holds no IMU sample");
-  if (report != nullptr) return FilterImuStamps(lines, report);
+  ImuCsvStream stream(path, report);
   std::vector<ImuSample> samples;
-  samples.reserve(lines.size());
-  for (const ImuLine& l : lines) samples.push_back(l.sample);
+  ImuSample s;
+  while (stream.Next(&s)) samples.push_back(s);
   return samples;
 }
 
 std::vector<ImageEntry> ReadEurocImageList(const std::string& path,
                                            const std::string& image_folder,
                                            int* missing) {
-  RequireFile(path);
-  CsvReader csv(path);
+  ImageListStream stream(path, image_folder);
   std::vector<ImageEntry> images;
-  *missing = 0;
-  bool first = true;
-  int64_t previous = 0;
-  while (csv.Next()) {
-    RequireFieldCount(csv, 2, "timestamp, filename");
-    const int64_t t_ns = csv.Int64(0);
-    RequireIncreasing(csv, first, previous, t_ns);
-    first = false;
-    previous = t_ns;
-    const std::string& name = csv.String(1);
-    if (name.empty()) csv.Fail("the filename is empty");
-    const std::string image = JoinPath(image_folder, name);
-    if (IsFile(image)) {
-      images.push_back(ImageEntry{t_ns, image});
-    } else {
-      ++*missing;
-    }
-  }
+  ImageEntry entry;
+  while (stream.Next(&entry)) images.push_back(std::move(entry));
+  *missing = stream.missing();
   return images;
 }
 
@@ -179,13 +128,19 @@ EurocData ReadEurocFolder(const std::string& folder,
   // data.csv is always an error.
   data.has_imu = options.require_imu || IsFolder(JoinPath(mav0, "imu0"));
   if (data.has_imu) {
-    data.imu = ReadEurocImu(JoinPath(mav0, "imu0/data.csv"),
-                            options.strict ? nullptr : &data.imu_stamps);
+    data.imu_path = JoinPath(mav0, "imu0/data.csv");
+    ImuCsvStream stream(data.imu_path,
+                        options.strict ? nullptr : &data.imu_stamps);
+    ImuSample s;
+    while (stream.Next(&s)) {
+      if (data.imu_count++ == 0) data.imu_first_ns = s.t_ns;
+      if (options.keep_imu) data.imu.push_back(s);
+    }
   }
   for (int n = 0;; ++n) {
     const std::string camera = JoinPath(mav0, "cam" + std::to_string(n));
     if (!IsFolder(camera)) break;
-    data.cameras.push_back(ReadCamera(camera, n));
+    data.cameras.push_back(ReadCamera(camera, n, options.keep_image_lists));
   }
   const std::string gt = JoinPath(mav0, "state_groundtruth_estimate0/data.csv");
   int64_t gt_first_ns = std::numeric_limits<int64_t>::max();

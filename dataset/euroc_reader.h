@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "dataset/euroc_csv_stream.h"
 #include "dataset/imu_stamp_filter.h"
 #include "dataset/trajectory.h"
 #include "geometry/feature_observation.h"
@@ -34,20 +35,19 @@
 
 namespace vio {
 
-// One image listed in camN/data.csv whose file exists.
-struct ImageEntry {
-  int64_t t_ns = 0;  // camera stamp [ns]
-  std::string path;  // the image file: <camN>/data/<filename>
-};
-
 // What one camera folder holds: images, feature observations, or both.
 struct EurocCamera {
   int index = 0;                   // N of camN
   std::string folder;              // <folder>/mav0/camN
   bool has_images = false;         // data.csv was present
   bool has_features = false;       // features.csv was present
-  std::vector<ImageEntry> images;  // listed and existing, in stamp order
+  std::vector<ImageEntry> images;  // listed and existing, in stamp order;
+                                   // empty when the lists are not kept
   int missing_images = 0;          // listed but absent: skipped
+  // Kept or not: how many images are listed and exist, and the first one's
+  // stamp (0 when there is none) [ns].
+  int64_t image_count = 0;
+  int64_t first_image_ns = 0;
   // One frame per distinct stamp of features.csv, in stamp order; only `uv`,
   // `feature_id` and `camera` (= index) are set: xy and velocity are the
   // frontend's job (frontend/observation_builder.h).
@@ -70,14 +70,33 @@ struct EurocReadOptions {
   // only the states it needs, so that its memory does not grow with the
   // ground truth's rate and length.
   bool keep_ground_truth = true;
+  // false: imu0/data.csv is read and checked through (a bad line is an
+  // error here, the stamp filter's drops are counted in
+  // EurocData::imu_stamps) but not kept: EurocData::imu stays empty and
+  // imu_path names the file, for a caller that reads it again as it goes
+  // (ImuCsvStream, dataset/euroc_csv_stream.h), so that its memory does not
+  // grow with the sequence's length. The counts, imu_count and imu_first_ns
+  // are those of the kept samples all the same.
+  bool keep_imu = true;
+  // false: each camN/data.csv is read and checked through (bad lines are
+  // errors here, missing images counted) but not kept: EurocCamera::images
+  // stays empty, image_count and first_image_ns are set, for a caller that
+  // reads the list again as it goes (ImageListStream).
+  bool keep_image_lists = true;
 };
 
 // The data of a whole sequence.
 struct EurocData {
   std::string folder;          // the sequence folder (the one holding mav0/)
   bool has_imu = false;        // imu0/data.csv was read
-  std::vector<ImuSample> imu;  // strictly increasing stamps
+  std::vector<ImuSample> imu;  // strictly increasing stamps; empty when
+                               // not kept (EurocReadOptions::keep_imu)
   ImuStampReport imu_stamps;   // IMU lines dropped for their stamps
+  std::string imu_path;        // imu0/data.csv; empty without has_imu
+  // Kept or not: the samples read (after the stamp filter) and the first
+  // one's stamp [ns] (0 when there is none).
+  int64_t imu_count = 0;
+  int64_t imu_first_ns = 0;
   std::vector<EurocCamera> cameras;        // cam0, cam1, ... as present
   std::vector<StampedState> ground_truth;  // empty when absent or not kept
   std::string ground_truth_path;           // empty when absent
@@ -110,11 +129,13 @@ std::vector<FeatureFrame> MergedFeatureFrames(const EurocData& data);
 // least one sample. Strict (report null): stamps must strictly increase.
 // Otherwise repeated and out-of-order stamps are dropped and counted in
 // *report (dataset/imu_stamp_filter.h); the result strictly increases.
+// The whole of ImuCsvStream's samples (dataset/euroc_csv_stream.h).
 std::vector<ImuSample> ReadEurocImu(const std::string& path,
                                     ImuStampReport* report = nullptr);
 
 // camN/data.csv: t [ns], filename; stamps strictly increasing. Files missing
-// from `image_folder` are skipped and counted in *missing.
+// from `image_folder` are skipped and counted in *missing. The whole of
+// ImageListStream's entries.
 std::vector<ImageEntry> ReadEurocImageList(const std::string& path,
                                            const std::string& image_folder,
                                            int* missing);

@@ -14,37 +14,44 @@ void Note(int line, int* count, int* first) {
 
 }  // namespace
 
-std::vector<ImuSample> FilterImuStamps(const std::vector<ImuLine>& lines,
-                                       ImuStampReport* report) {
-  std::vector<ImuSample> kept;
-  kept.reserve(lines.size());
-  for (size_t k = 0; k < lines.size(); ++k) {
-    const ImuSample& s = lines[k].sample;
-    const int line = lines[k].line;
-    if (!kept.empty() && s.t_ns == kept.back().t_ns) {
-      if (SameValues(s, kept.back())) {
-        Note(line, &report->repeated_lines, &report->first_repeated_line);
-      } else {
-        if (report->conflicting_repeats == 0) {
-          report->first_conflict_t_ns = s.t_ns;
-        }
-        Note(line, &report->conflicting_repeats, &report->first_conflict_line);
+bool ImuStampFilter::Add(const ImuLine& line, ImuSample* kept) {
+  const bool decided = pending_.has_value() && Decide(&line, kept);
+  pending_ = line;
+  return decided;
+}
+
+bool ImuStampFilter::Finish(ImuSample* kept) {
+  const bool decided = pending_.has_value() && Decide(nullptr, kept);
+  pending_.reset();
+  return decided;
+}
+
+bool ImuStampFilter::Decide(const ImuLine* next, ImuSample* kept) {
+  const ImuSample& s = pending_->sample;
+  const int line = pending_->line;
+  if (last_kept_ && s.t_ns == last_kept_->t_ns) {
+    if (SameValues(s, *last_kept_)) {
+      Note(line, &report_->repeated_lines, &report_->first_repeated_line);
+    } else {
+      if (report_->conflicting_repeats == 0) {
+        report_->first_conflict_t_ns = s.t_ns;
       }
-      continue;
+      Note(line, &report_->conflicting_repeats, &report_->first_conflict_line);
     }
-    const bool before_last = !kept.empty() && s.t_ns < kept.back().t_ns;
-    // A stamp ahead of the next sample, where the next one fits after the
-    // last kept sample: this one is out of place, not all that follow it.
-    const bool runs_ahead =
-        k + 1 < lines.size() && lines[k + 1].sample.t_ns < s.t_ns &&
-        (kept.empty() || lines[k + 1].sample.t_ns > kept.back().t_ns);
-    if (before_last || runs_ahead) {
-      Note(line, &report->out_of_order, &report->first_out_of_order_line);
-      continue;
-    }
-    kept.push_back(s);
+    return false;
   }
-  return kept;
+  const bool before_last = last_kept_ && s.t_ns < last_kept_->t_ns;
+  // A stamp ahead of the next line, where the next one fits after the last
+  // kept sample: this one is out of place, not all that follow it.
+  const bool runs_ahead = next != nullptr && next->sample.t_ns < s.t_ns &&
+                          (!last_kept_ || next->sample.t_ns > last_kept_->t_ns);
+  if (before_last || runs_ahead) {
+    Note(line, &report_->out_of_order, &report_->first_out_of_order_line);
+    return false;
+  }
+  last_kept_ = s;
+  *kept = s;
+  return true;
 }
 
 }  // namespace vio

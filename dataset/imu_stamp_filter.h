@@ -9,15 +9,32 @@
 //   - a stamp repeated with other values: the first sample is kept, the
 //     later ones are dropped;
 //   - a sample whose stamp is before the last kept one is dropped (out of
-//     order); so is a single sample whose stamp runs ahead of the samples
-//     after it (a stamp glitch into the future), which would otherwise put
-//     every sample after it out of order.
+//     order); so is a single sample whose stamp runs ahead of the line after
+//     it while that line fits after the last kept sample (a stamp glitch into
+//     the future), which would otherwise put every sample after it out of
+//     order.
 //
 // Each is counted, with the first line of each kind, so that the tools can
 // warn once per kind. The kept samples strictly increase.
+//
+// The filter runs as the file is read, with a bounded look-ahead of one line:
+// the verdict on line k needs only the samples kept before it and line k+1
+// (the raw next line, whatever becomes of it), so it is given when line k+1
+// arrives (or at the end of the file). Nothing else is held, so memory does
+// not grow with the file. This is exactly the rule the filter had when it
+// took the whole file at once (it never looked past line k+1 either): every
+// input gives the same samples and the same counts as then
+// (test/imu_stamp_filter_test.cc holds them equal on randomised glitchy
+// files and on the real EuRoC IMU files). What one line of look-ahead
+// cannot repair, and never could: two or more consecutive samples stamped
+// ahead (a glitch of a run of lines) are kept, since each fits before the
+// next, and the good samples after them are then dropped as out of order
+// until the stamps pass the glitch (ImuStampFilter.ARunOfFutureStampsIsKept).
+// A longer window could drop such a run instead, but would change the
+// samples that files give today.
 
 #include <cstdint>
-#include <vector>
+#include <optional>
 
 #include "preintegration/imu_types.h"
 
@@ -43,10 +60,29 @@ struct ImuStampReport {
   }
 };
 
-// The samples of `lines` (in file order) with the stamps cleaned as the file
-// comment says; the counts are added to *report.
-std::vector<ImuSample> FilterImuStamps(const std::vector<ImuLine>& lines,
-                                       ImuStampReport* report);
+// The filter of the file comment, fed one line at a time in file order.
+class ImuStampFilter {
+ public:
+  // The counts are added to *report, which must outlive the filter.
+  explicit ImuStampFilter(ImuStampReport* report) : report_(report) {}
+
+  // Takes the next line; decides the one before it. True when that one is
+  // kept, then *kept is it (its stamp after every sample kept before).
+  bool Add(const ImuLine& line, ImuSample* kept);
+
+  // At the end of the file: decides the last line (nothing follows it to
+  // run ahead of). True when it is kept, then *kept is it. Add may not be
+  // called after this.
+  bool Finish(ImuSample* kept);
+
+ private:
+  // The verdict on pending_, given the line after it (none at the end).
+  bool Decide(const ImuLine* next, ImuSample* kept);
+
+  ImuStampReport* report_;
+  std::optional<ImuLine> pending_;  // read, not yet decided
+  std::optional<ImuSample> last_kept_;
+};
 
 }  // namespace vio
 

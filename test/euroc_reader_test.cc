@@ -362,6 +362,57 @@ TEST(EurocReader, AFolderWithoutImuLoadsOnlyWhenTheCallerSaysSo) {
   EXPECT_EQ(ReadEurocFolder(dir.path(), options).imu.size(), 3u);
 }
 
+// vio_replay's read: the IMU and the image lists checked through at load but
+// not kept. Every count, first stamp and error is that of the kept read.
+TEST(EurocReader, NotKeepingTheImuAndImageListsChangesOnlyTheVectors) {
+  EurocReadOptions streamed;
+  streamed.keep_imu = false;
+  streamed.keep_image_lists = false;
+  const EurocData kept = ReadEurocFolder(kV101);
+  const EurocData data = ReadEurocFolder(kV101, streamed);
+  EXPECT_TRUE(data.imu.empty());
+  EXPECT_EQ(data.imu_path, kV101 + "/mav0/imu0/data.csv");
+  EXPECT_EQ(data.imu_count, 29120);
+  EXPECT_EQ(data.imu_count, static_cast<int64_t>(kept.imu.size()));
+  EXPECT_EQ(data.imu_first_ns, kept.imu.front().t_ns);
+  EXPECT_EQ(kept.imu_first_ns, kept.imu.front().t_ns);
+  EXPECT_EQ(data.start_ns, kept.start_ns);
+  ASSERT_EQ(data.cameras.size(), 2u);
+  for (int c = 0; c < 2; ++c) {
+    EXPECT_TRUE(data.cameras[c].images.empty());
+    EXPECT_EQ(data.cameras[c].image_count, 95);
+    EXPECT_EQ(kept.cameras[c].image_count, 95);
+    EXPECT_EQ(data.cameras[c].first_image_ns,
+              kept.cameras[c].images.front().t_ns);
+    EXPECT_EQ(data.cameras[c].missing_images, kept.cameras[c].missing_images);
+  }
+  // The stamp filter's counts, on a messy file.
+  TempFolder dir;
+  WriteValidSequence(dir);
+  dir.Write("mav0/imu0/data.csv", std::string(kImuHeader) + kMessyImuRows);
+  const EurocData messy = ReadEurocFolder(dir.path(), streamed);
+  EXPECT_EQ(messy.imu_count, 6);
+  EXPECT_EQ(messy.imu_first_ns, 1000000000);
+  EXPECT_EQ(messy.imu_stamps.dropped(), 4);
+  EXPECT_EQ(messy.imu_stamps.first_out_of_order_line, 8);
+  EXPECT_EQ(messy.cameras[0].image_count, 2);
+  EXPECT_EQ(messy.cameras[0].first_image_ns, 1000000000);
+  EXPECT_EQ(messy.cameras[0].missing_images, 1);
+  EXPECT_EQ(messy.start_ns, 999000000);
+  // Errors anywhere in the files are still found at load.
+  dir.Write("mav0/imu0/data.csv", std::string(kImuHeader) + kImuRows +
+                                      "1015000000,0.1,0.2,0.3,9.8,inf,0.1\n");
+  ExpectDatasetError(
+      [&] { ReadEurocFolder(dir.path(), streamed); },
+      {dir.Path("mav0/imu0/data.csv:5: field 6 is not finite ('inf')")});
+  WriteValidSequence(dir);
+  dir.Write("mav0/cam0/data.csv",
+            "#timestamp [ns],filename\n1000000000,a.png\n900000000,b.png\n");
+  ExpectDatasetError([&] { ReadEurocFolder(dir.path(), streamed); },
+                     {dir.Path("mav0/cam0/data.csv:3: timestamp 900000000 is "
+                               "before the previous one")});
+}
+
 TEST(EurocReader, LoadsTheRealMh05ExcerptThatHasNoCameraFolder) {
   const EurocData data = ReadEurocFolder(kMh05);
   EXPECT_TRUE(data.cameras.empty());

@@ -19,7 +19,10 @@
 #include "config/frontend_config.h"
 #include "config/imu_config.h"
 #include "config/visual_config.h"
+#include "dataset/euroc_csv_stream.h"
 #include "estimator/sequence_runner.h"
+#include "test/testing/euroc_v1_01.h"
+#include "test/testing/temp_folder.h"
 #include "tools/image_tracks.h"
 
 namespace vio {
@@ -104,6 +107,13 @@ TEST(FramePipeline, RejectsAnEmptyQueue) {
                std::invalid_argument);
 }
 
+// The V1_01 excerpt with its first `frames` cam0 images (a folder of
+// links), loaded whole.
+EurocSequence ExcerptOf(const testing::TempFolder& dir, int frames) {
+  testing::WriteV101Excerpt(dir.path(), frames);
+  return LoadEurocSequence(dir.path());
+}
+
 // Everything vio_replay builds from config/euroc_stereo.yaml.
 struct StereoReplay {
   YamlNode root = YamlNode::LoadFile(std::string(VIO_SOURCE_DIR) +
@@ -111,14 +121,13 @@ struct StereoReplay {
   ImuConfig imu = LoadImuConfig(root);
   EstimatorOptions options;
   FrontendOptions frontend = ReadFrontendOptions(root.Child("frontend"));
-  EurocSequence seq = LoadEurocSequence(std::string(VIO_SHARED_DIR) +
-                                        "/data/euroc_V1_01_first5s");
+  testing::TempFolder dir;
+  EurocSequence seq;
   std::vector<EstimatorCamera> cameras{2};
 
   // The first 50 frames (2.5 s) keep the test short; the static start
   // initialises after about 1 s.
-  StereoReplay() {
-    seq.data.cameras[0].images.resize(50);
+  explicit StereoReplay(int frames = 50) : seq(ExcerptOf(dir, frames)) {
     options = ReadEstimatorOptions(root);
     ApplyImuConfig(imu, &options);
     for (int c = 0; c < 2; ++c) {
@@ -131,13 +140,17 @@ struct StereoReplay {
     return Estimator(options, ReadVisualOptions(root), seq.imu.noise,
                      imu.preintegration, cameras);
   }
-  // Frames tracked while the estimator consumes them, as vio_replay does.
+  // Frames tracked while the estimator consumes them, as vio_replay does:
+  // the image lists and the IMU read from their files as the run goes.
   std::vector<EstimatorOutput> Streamed(const PipelineOptions& pipeline,
                                         ImageTrackingSummary* summary) const {
     Estimator estimator = MakeEstimator();
     // Pipelined as vio_replay: reading and tracking on their own threads.
     EurocImageStream stream(seq, frontend, true, !pipeline.sequential);
-    StreamingRunner runner(&estimator, &seq.data.imu);
+    ImuStampReport counts;
+    ImuCsvStream imu(seq.data.imu_path, &counts);
+    StreamingRunner runner(&estimator,
+                           [&imu](ImuSample* s) { return imu.Next(s); });
     std::vector<EstimatorOutput> outputs;
     RunFramePipeline(
         [&](FeatureFrame* f) { return stream.Next(f); },
@@ -175,6 +188,12 @@ TEST(ImageReplay, PipelinedEqualsSequentialBitForBitOnRealStereo) {
   ImageTrackingSummary all_first;
   const std::vector<FeatureFrame> frames =
       ImageObservations(replay.seq, replay.frontend, &all_first);
+  // The image list read as the frames go gives the one read at load.
+  const std::vector<ImageEntry>& listed = replay.seq.data.cameras[0].images;
+  ASSERT_EQ(frames.size(), listed.size());
+  for (size_t k = 0; k < frames.size(); ++k) {
+    EXPECT_EQ(frames[k].t_ns, listed[k].t_ns);
+  }
   Estimator estimator = replay.MakeEstimator();
   const std::vector<EstimatorOutput> expected =
       RunSequence(&estimator, replay.seq.data.imu, frames);
@@ -205,8 +224,7 @@ TEST(ImageReplay, PipelinedEqualsSequentialBitForBitOnRealStereo) {
 // dropped half way without hanging (the threads are blocked on full queues
 // then).
 TEST(EurocImageStream, ThreadedGivesTheFramesOfOneThreadBitForBit) {
-  StereoReplay replay;
-  replay.seq.data.cameras[0].images.resize(30);
+  const StereoReplay replay(30);
   EurocImageStream one(replay.seq, replay.frontend, true, false);
   EurocImageStream threaded(replay.seq, replay.frontend, true, true);
   FeatureFrame a, b;

@@ -102,6 +102,34 @@ TEST_F(BadImages, AreSkippedAndCountedNeverFatal) {
   EXPECT_EQ(summary.skipped(), 4);
 }
 
+// cam1's list is walked alongside cam0's by stamp: its images before cam0's
+// first, between two of cam0's and after cam0's last are all counted as
+// without a partner, whatever the frames read so far.
+TEST_F(BadImages, Cam1ImagesWithoutACam0PartnerAnywhereAreCounted) {
+  const fs::path cam1 = root_ / "mav0/cam1";
+  const auto rows = testing::V101ImageList(1);
+  std::ofstream csv(cam1 / "data.csv", std::ios::trunc);
+  csv << "#timestamp [ns],filename\n";
+  // Before cam0's first, then cam0's 0 and 1, between 1 and 2, after 5.
+  csv << rows[0].first - 1 << "," << rows[0].second << "\n";
+  csv << rows[0].first << "," << rows[0].second << "\n";
+  csv << rows[1].first << "," << rows[1].second << "\n";
+  csv << rows[1].first + 1 << "," << rows[1].second << "\n";
+  csv << rows[5].first + 1 << "," << rows[0].second << "\n";
+  csv << rows[5].first + 2 << "," << rows[1].second << "\n";
+  csv.close();
+  const EurocSequence sequence = LoadEurocSequence(root_.string());
+  ImageTrackingSummary summary;
+  const std::vector<FeatureFrame> frames =
+      TrackEurocImages(sequence, FrontendOptions(), &summary);
+  EXPECT_EQ(frames.size(), 4u);
+  EXPECT_EQ(summary.cameras[1].used, 2);
+  EXPECT_EQ(summary.stereo_frames, 2);
+  EXPECT_EQ(summary.cameras[1].unpaired, 4);
+  EXPECT_EQ(summary.cameras[1].missing, 0);
+  EXPECT_EQ(summary.cameras[0].missing, 1);
+}
+
 TEST(SaveTracks, OneFeaturesCsvPerCameraThatReadsBack) {
   EXPECT_EQ(TracksPathForCamera("out/tracks.csv", 0), "out/tracks.csv");
   EXPECT_EQ(TracksPathForCamera("out/tracks.csv", 1), "out/tracks.cam1.csv");

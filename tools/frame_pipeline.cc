@@ -58,8 +58,8 @@ void RunFramePipeline(const FrameProducer& produce,
 EstimatorOutput StreamingRunner::AddFrame(const FeatureFrame& frame) {
   const int64_t t_imu_ns =
       frame.t_ns + std::llround(estimator_->time_offset_s() * 1e9);
-  while (next_imu_ < imu_->size()) {
-    const ImuSample& s = (*imu_)[next_imu_++];
+  ImuSample s;
+  while (imu_(&s)) {
     estimator_->AddImu(s);
     if (s.t_ns >= t_imu_ns) break;
   }

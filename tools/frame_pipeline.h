@@ -15,6 +15,7 @@
 // producer's thread has joined. Neither can hang or terminate the process.
 
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "estimator/estimator.h"
@@ -40,21 +41,28 @@ void RunFramePipeline(const FrameProducer& produce,
                       const FrameConsumer& consume,
                       const PipelineOptions& options);
 
+// The IMU samples in stamp order, one per call: fills *sample and returns
+// true, or false at the end (and on every call after it); e.g. an
+// ImuCsvStream's Next (dataset/euroc_csv_stream.h), which reads them from
+// the file as the replay goes.
+using ImuSource = std::function<bool(ImuSample* sample)>;
+
 // Feeds an estimator one frame at a time in RunSequence's order
 // (estimator/sequence_runner.h): before each frame, every IMU sample up to
 // and including the first one at or after the frame's IMU time (t_cam +
-// t_d). frame_pipeline_test holds its outputs equal to RunSequence's.
+// t_d). It pulls the samples from `imu` as it needs them and holds none, so
+// the IMU can be read during the run. frame_pipeline_test holds its outputs
+// equal to RunSequence's.
 class StreamingRunner {
  public:
-  StreamingRunner(Estimator* estimator, const std::vector<ImuSample>* imu)
-      : estimator_(estimator), imu_(imu) {}
+  StreamingRunner(Estimator* estimator, ImuSource imu)
+      : estimator_(estimator), imu_(std::move(imu)) {}
 
   EstimatorOutput AddFrame(const FeatureFrame& frame);
 
  private:
   Estimator* estimator_;
-  const std::vector<ImuSample>* imu_;
-  size_t next_imu_ = 0;
+  ImuSource imu_;
 };
 
 }  // namespace vio

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <ctime>
 #include <exception>
-#include <map>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
@@ -39,6 +38,12 @@ cv::Mat ReadImage(const std::string& path, const CameraCalibration& camera,
   }
   ++counts->used;
   return image;
+}
+
+// A camera's image list, to be read as the frames need it.
+std::unique_ptr<ImageListStream> OpenList(const EurocCamera& camera) {
+  return std::make_unique<ImageListStream>(JoinPath(camera.folder, "data.csv"),
+                                           JoinPath(camera.folder, "data"));
 }
 
 }  // namespace
@@ -123,11 +128,8 @@ EurocImageStream::EurocImageStream(const EurocSequence& sequence,
     for (int c = 0; c < needed; ++c) models.emplace_back(sequence.cameras[c]);
     builder_ = std::make_unique<ObservationBuilder>(models);
   }
-  if (options.stereo) {
-    summary_.cameras[1].missing = cameras[1].missing_images;
-    for (const ImageEntry& e : cameras[1].images) right_by_stamp_[e.t_ns] = &e;
-  }
-  summary_.cameras[0].missing = cameras[0].missing_images;
+  left_list_ = OpenList(cameras[0]);
+  if (options.stereo) right_list_ = OpenList(cameras[1]);
 }
 
 EurocImageStream::~EurocImageStream() {
@@ -146,30 +148,56 @@ const ObservationBuilderSummary& EurocImageStream::builder_summary() const {
   return builder_ ? builder_->summary() : kNone;
 }
 
+std::optional<ImageEntry> EurocImageStream::RightAt(int64_t t_ns,
+                                                    int64_t* unpaired) {
+  for (;;) {
+    if (!right_next_) {
+      ImageEntry entry;
+      if (!right_list_->Next(&entry)) return std::nullopt;
+      right_next_ = std::move(entry);
+    }
+    if (right_next_->t_ns > t_ns) return std::nullopt;
+    if (right_next_->t_ns == t_ns) {
+      ImageEntry match = std::move(*right_next_);
+      right_next_.reset();
+      return match;
+    }
+    right_next_.reset();
+    ++*unpaired;
+  }
+}
+
+void EurocImageStream::FinishLists(ImageCounts counts[2]) {
+  counts[0].missing += left_list_->missing();
+  if (!right_list_) return;
+  if (right_next_) ++counts[1].unpaired;
+  right_next_.reset();
+  ImageEntry entry;
+  while (right_list_->Next(&entry)) ++counts[1].unpaired;
+  counts[1].missing += right_list_->missing();
+}
+
 bool EurocImageStream::Read(Work* work) {
-  const std::vector<ImageEntry>& images = sequence_.data.cameras[0].images;
-  while (next_ < images.size()) {
-    const ImageEntry& entry = images[next_++];
+  ImageEntry entry;
+  while (left_list_->Next(&entry)) {
+    std::optional<ImageEntry> right_entry;
+    if (right_list_) {
+      right_entry = RightAt(entry.t_ns, &work->counts[1].unpaired);
+    }
     const Clock::time_point start = Clock::now();
     cv::Mat left =
         ReadImage(entry.path, sequence_.cameras[0], &work->counts[0]);
     cv::Mat right;
-    auto it = right_by_stamp_.find(entry.t_ns);
-    if (it != right_by_stamp_.end()) {
+    if (right_entry) {
       if (!left.empty()) {
-        right =
-            ReadImage(it->second->path, sequence_.cameras[1], &work->counts[1]);
+        right = ReadImage(right_entry->path, sequence_.cameras[1],
+                          &work->counts[1]);
       } else {
         ++work->counts[1].unpaired;
       }
-      right_by_stamp_.erase(it);
     }
     work->read_seconds += SecondsSince(start);
     if (left.empty()) continue;
-    if (next_ == images.size()) {
-      work->counts[1].unpaired += static_cast<int64_t>(right_by_stamp_.size());
-      right_by_stamp_.clear();
-    }
     work->t_ns = entry.t_ns;
     work->left = std::move(left);
     // Preparing the right image is the frontend's work: timed as tracking.
@@ -182,8 +210,7 @@ bool EurocImageStream::Read(Work* work) {
     work->track_seconds += SecondsSince(prepare);
     return true;
   }
-  work->counts[1].unpaired += static_cast<int64_t>(right_by_stamp_.size());
-  right_by_stamp_.clear();
+  FinishLists(work->counts);
   work->end = true;
   return false;
 }

@@ -13,12 +13,13 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "config/euroc_sequence.h"
+#include "dataset/euroc_csv_stream.h"
 #include "frontend/frontend_options.h"
 #include "frontend/observation_builder.h"
 #include "geometry/feature_observation.h"
@@ -52,6 +53,16 @@ struct ImageTrackingSummary {
 // for (vio_replay's pipeline): the same frames, in the same order, as
 // TrackEurocImages / ImageObservations. Throws std::invalid_argument on
 // construction as TrackEurocImages does.
+//
+// The image lists (camN/data.csv) are read here too, a line at a time as
+// the frames need them (ImageListStream, dataset/euroc_csv_stream.h), not
+// taken from sequence.data.cameras[c].images, which may be empty
+// (EurocReadOptions::keep_image_lists): memory does not grow with the
+// sequence's length. cam1's list is walked alongside cam0's by stamp (both
+// strictly increase); its images without a cam0 partner are counted as
+// unpaired as they are passed, those after cam0's last at the end. A line
+// the loader accepted cannot fail here unless the file changed since; then
+// the DatasetError is the stream's error (see below).
 //
 // Each frame goes through three steps: read (decode both images, prepare
 // the right one for the stereo match), track (cam0, whose state carries from
@@ -87,8 +98,10 @@ class EurocImageStream {
   std::unique_ptr<CameraModel> cam1_;
   std::unique_ptr<ImageFrontend> frontend_;
   std::unique_ptr<ObservationBuilder> builder_;  // null: no observation step
-  std::map<int64_t, const ImageEntry*> right_by_stamp_;
-  size_t next_ = 0;  // the next cam0 image
+  std::unique_ptr<ImageListStream> left_list_;
+  std::unique_ptr<ImageListStream> right_list_;  // null in mono
+  // cam1's next image, not yet passed by cam0's stamps.
+  std::optional<ImageEntry> right_next_;
   bool finished_ = false;
 
   struct Work;     // one frame between the steps
@@ -101,6 +114,12 @@ class EurocImageStream {
   void Track(Work* work);
   void Finish(Work* work, FeatureFrame* frame);
   void AddCounts(const Work& work);
+  // The cam1 image at `t_ns` (cam0's next stamp), if listed; the cam1 images
+  // before it are counted in *unpaired.
+  std::optional<ImageEntry> RightAt(int64_t t_ns, int64_t* unpaired);
+  // After cam0's last image: cam1's remaining images counted in *unpaired,
+  // both lists' missing images in counts.
+  void FinishLists(ImageCounts counts[2]);
   void StartThreads();
   const bool threaded_;
   std::unique_ptr<Threads> threads_;

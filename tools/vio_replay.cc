@@ -21,9 +21,10 @@
 #include "config/frontend_config.h"
 #include "config/imu_config.h"
 #include "config/visual_config.h"
+#include "dataset/euroc_csv_stream.h"
 #include "dataset/landmarks_io.h"
 #include "dataset/sim_folder.h"
-#include "estimator/sequence_runner.h"
+#include "estimator/estimator.h"
 #include "frontend/observation_builder.h"
 #include "tools/command_line.h"
 #include "tools/frame_pipeline.h"
@@ -269,7 +270,8 @@ struct ImageReplay {
 ImageReplay ReplayImages(const EurocSequence& seq,
                          const FrontendOptions& frontend,
                          const PipelineOptions& pipeline, bool keep_tracks,
-                         Estimator* estimator, LandmarkStream* landmarks,
+                         const ImuSource& imu, Estimator* estimator,
+                         LandmarkStream* landmarks,
                          ImageTrackingSummary* summary,
                          ObservationBuilderSummary* removed) {
   // Pipelined, the stages are the parallelism: OpenCV's own pool (TBB here)
@@ -278,9 +280,9 @@ ImageReplay ReplayImages(const EurocSequence& seq,
   // parallel loops split independent points and rows).
   if (!pipeline.sequential) cv::setNumThreads(1);
   EurocImageStream stream(seq, frontend, true, !pipeline.sequential);
-  StreamingRunner runner(estimator, &seq.data.imu);
-  const std::vector<ImageEntry>& images = seq.data.cameras[0].images;
-  Progress progress(images.size(), images.empty() ? 0 : images[0].t_ns);
+  StreamingRunner runner(estimator, imu);
+  const EurocCamera& cam0 = seq.data.cameras[0];
+  Progress progress(static_cast<size_t>(cam0.image_count), cam0.first_image_ns);
   ImageReplay replay;
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
@@ -392,6 +394,11 @@ int main(int argc, char** argv) {
     read.strict = args.strict;
     // Checked now, read again at the end at the estimate's stamps only.
     read.keep_ground_truth = false;
+    // Checked now (errors, counts, first stamps), read again as the replay
+    // goes: the IMU by the estimator's feed, the image lists by the reading
+    // thread; memory does not grow with the sequence's length.
+    read.keep_imu = false;
+    read.keep_image_lists = false;
     const EurocSequence seq = LoadEurocSequence(folder, read);
     const int used = config.estimator.use_stereo ? 2 : 1;
     if (static_cast<int>(seq.cameras.size()) < used) {
@@ -433,10 +440,17 @@ int main(int argc, char** argv) {
     std::vector<EstimatorOutput> outputs;
     double wall_s = 0.0;
     double cpu_s = 0.0;
+    // The loader counted the stamp filter's drops (input.imu_stamps); this
+    // second pass over the same file counts the same and is not reported.
+    ImuStampReport reread;
+    ImuCsvStream imu_file(seq.data.imu_path, args.strict ? nullptr : &reread);
+    const ImuSource imu = [&imu_file](ImuSample* s) {
+      return imu_file.Next(s);
+    };
     if (images) {
       ImageReplay replay = ReplayImages(
-          seq, frontend, args.pipeline, !args.save_tracks.empty(), &estimator,
-          &landmarks, &image_summary, &input.observations);
+          seq, frontend, args.pipeline, !args.save_tracks.empty(), imu,
+          &estimator, &landmarks, &image_summary, &input.observations);
       outputs = std::move(replay.outputs);
       frames = std::move(replay.frames);
       wall_s = replay.wall_s;
@@ -450,11 +464,14 @@ int main(int argc, char** argv) {
     } else {
       Progress progress(frames.size(), frames.empty() ? 0 : frames[0].t_ns);
       const auto start = std::chrono::steady_clock::now();
-      outputs = RunSequence(&estimator, seq.data.imu, frames,
-                            [&](size_t i, const EstimatorOutput& o) {
-                              landmarks.Take(&estimator);
-                              progress.Update(i, o.t_ns);
-                            });
+      // RunSequence's order, the IMU read as it goes.
+      StreamingRunner runner(&estimator, imu);
+      outputs.reserve(frames.size());
+      for (size_t i = 0; i < frames.size(); ++i) {
+        outputs.push_back(runner.AddFrame(frames[i]));
+        landmarks.Take(&estimator);
+        progress.Update(i, outputs.back().t_ns);
+      }
       wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                              start)
                    .count();

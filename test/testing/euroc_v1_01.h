@@ -6,6 +6,7 @@
 // files through config/) and its images.
 
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -54,6 +55,28 @@ inline cv::Mat V101Image(int camera, size_t index) {
   return cv::imread(V101Dir() + "/cam" + std::to_string(camera) + "/data/" +
                         rows[index].second,
                     cv::IMREAD_GRAYSCALE);
+}
+
+// A sequence folder at `folder` that is the excerpt with cam0's list cut to
+// its first `cam0_images` rows (cam1, the IMU and the ground truth whole): a
+// shorter replay of real data. Everything but cam0/data.csv is a symbolic
+// link to the excerpt's own files.
+inline void WriteV101Excerpt(const std::string& folder, int cam0_images) {
+  namespace fs = std::filesystem;
+  const fs::path src(V101Dir());
+  const fs::path mav0 = fs::path(folder) / "mav0";
+  fs::create_directories(mav0 / "cam0");
+  for (const char* entry : {"imu0", "cam1", "state_groundtruth_estimate0"}) {
+    fs::create_directory_symlink(src / entry, mav0 / entry);
+  }
+  fs::create_directory_symlink(src / "cam0/data", mav0 / "cam0/data");
+  fs::create_symlink(src / "cam0/sensor.yaml", mav0 / "cam0/sensor.yaml");
+  std::ofstream csv(mav0 / "cam0/data.csv");
+  csv << "#timestamp [ns],filename\n";
+  const auto rows = V101ImageList(0);
+  for (int k = 0; k < cam0_images && k < static_cast<int>(rows.size()); ++k) {
+    csv << rows[k].first << "," << rows[k].second << "\n";
+  }
 }
 
 }  // namespace testing
