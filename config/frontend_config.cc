@@ -41,7 +41,9 @@ StereoMatcherOptions ReadStereoMatcher(const YamlNode& node) {
   o.klt = ReadKlt(node);
   o.equalize = node.Get<bool>("equalize");
   o.max_reverse_px = node.Get<double>("max_reverse_px");
+  o.reverse_pyramid_levels = node.Get<int>("reverse_pyramid_levels");
   o.max_epipolar_px = node.Get<double>("max_epipolar_px");
+  o.start_from_previous = node.Get<bool>("start_from_previous");
   ValidateAt(node, o);
   return o;
 }

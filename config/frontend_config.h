@@ -14,7 +14,8 @@
 //                       clahe_tiles }
 //     stereo_matcher: { klt_window_px, klt_pyramid_levels, klt_max_iterations,
 //                       klt_epsilon_px, equalize, max_reverse_px,
-//                       max_epipolar_px }
+//                       reverse_pyramid_levels,
+//                       max_epipolar_px, start_from_previous }
 //
 // Every key is required (a missing one is an error, never a silent default);
 // units are those of frontend/frontend_options.h. The cameras' calibration is

@@ -47,6 +47,19 @@
 
 namespace vio {
 
+// The 32-bit float grey `image` under the affine warp W(x) = M x + t over
+// the square patch of offsets x = (j - half, i - half), i, j in
+// [0, 2 half], into *samples (row-major, (2 half + 1)^2 values): bilinear,
+// the borders clamped (a point beyond the image reads its nearest edge).
+// Each point is computed as (M00 x0 + M01 x1) + t0, (M10 x0 + M11 x1) + t1
+// and each sample as one fixed sequence of float operations, so the result
+// is bit for bit that of the plain per-pixel expressions (and of the
+// refiner before this function was made faster). `buffer` holds the warp's
+// products between calls.
+void SampleAffinePatch(const cv::Mat& image, const Eigen::Matrix2f& M,
+                       const Eigen::Vector2f& t, int half,
+                       std::vector<float>* buffer, Eigen::VectorXf* samples);
+
 // What AnchorRefiner::Refine did with each track.
 enum class AnchorResult : uint8_t { kRefined, kRenewed, kDropped };
 
@@ -85,14 +98,15 @@ class AnchorRefiner {
   // Aligns anchor `a` with the image from position t; true when it
   // converged with a sane warp. Sets the aligned position and correlation.
   bool Align(const cv::Mat& image, Anchor* a, Eigen::Vector2f* t,
-             float* correlation) const;
-  // The image under the warp (M, t) over the patch, as a row-major vector.
-  Eigen::VectorXf Sample(const cv::Mat& image, const Eigen::Matrix2f& M,
-                         const Eigen::Vector2f& t) const;
+             float* correlation);
 
   FeatureTrackerOptions options_;
   int half_;  // patch half side [px]
   std::unordered_map<int64_t, Anchor> anchors_;
+  // Align's buffers, kept from call to call (SampleAffinePatch's and the
+  // samples).
+  std::vector<float> offsets_;
+  Eigen::VectorXf sample_;
 };
 
 }  // namespace vio

@@ -96,6 +96,13 @@ bool StereoMatcherOptions::Validate(std::string* message) const {
   if (!Positive(max_reverse_px)) {
     return Fail("max_reverse_px", "> 0", max_reverse_px, message);
   }
+  if (reverse_pyramid_levels < 0 ||
+      reverse_pyramid_levels > klt.pyramid_levels) {
+    return Fail("reverse_pyramid_levels",
+                "in [0, klt_pyramid_levels = " +
+                    std::to_string(klt.pyramid_levels) + "]",
+                reverse_pyramid_levels, message);
+  }
   if (!Positive(max_epipolar_px)) {
     return Fail("max_epipolar_px", "> 0", max_epipolar_px, message);
   }

@@ -74,8 +74,11 @@ struct FeatureTrackerOptions {
 struct StereoMatcherOptions {
   // A 15 px window: the matched images are taken at the same instant, so
   // the patch does not deform as along a track, and it costs half of the
-  // tracker's 21 px window per iteration (docs/frontend.md).
-  KltOptions klt = {15};
+  // tracker's 21 px window per iteration (docs/frontend.md). 7 iterations
+  // per level: most matches converge in fewer, and the points that do not
+  // (occluded, out of view) spent most of the match's time in up to 30
+  // (docs/speed.md, fifth pass).
+  KltOptions klt = {15, 3, 7};
   // Equalise the histograms of both images before matching
   // (cv::equalizeHist). The two cameras expose differently (mean grey 145
   // against 130 on V1_01) and LK assumes equal brightness: on the first
@@ -84,9 +87,20 @@ struct StereoMatcherOptions {
   bool equalize = true;
   // Matching right -> left must return within this distance [px].
   double max_reverse_px = 0.5;
+  // Pyramid levels above full resolution of that reverse LK [-]. It starts
+  // at the left pixel, where a good match returns, so it needs no coarse
+  // levels to reach it: 0 costs a quarter of klt.pyramid_levels + 1 levels
+  // (docs/speed.md, fifth pass). At most klt.pyramid_levels.
+  int reverse_pyramid_levels = 0;
   // Distance of the right observation to the epipolar line of the left one,
   // measured on the undistorted right image [px].
   double max_epipolar_px = 1.0;
+  // Start the left -> right LK of a feature matched in the previous frame at
+  // its previous offset from the left pixel (the disparity changes little
+  // from frame to frame) instead of at the left pixel itself; features
+  // without a previous match start at their left pixel. LK then needs fewer
+  // iterations per level (docs/speed.md, fifth pass).
+  bool start_from_previous = true;
 
   bool Validate(std::string* message) const;
 };

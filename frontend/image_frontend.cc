@@ -18,7 +18,8 @@ const FrontendOptions& Validated(const FrontendOptions& options) {
 
 ImageFrontend::ImageFrontend(const CameraModel& cam0, const CameraModel* cam1,
                              const FrontendOptions& options)
-    : tracker_(cam0, Validated(options).tracker, 0) {
+    : tracker_(cam0, Validated(options).tracker, 0),
+      start_from_previous_(options.stereo_matcher.start_from_previous) {
   if (options.stereo) {
     if (cam1 == nullptr) {
       throw std::invalid_argument(
@@ -63,12 +64,38 @@ void ImageFrontend::PrepareRight(const cv::Mat& right,
 
 void ImageFrontend::MatchRight(const StereoImage& right,
                                TrackedFrame* tracked) {
-  if (!matcher_ || right.pyramid.empty()) return;
+  if (!matcher_) return;
+  if (right.pyramid.empty()) {
+    previous_offset_.clear();  // no match to start from in the next frame
+    return;
+  }
   matcher_->PrepareLeft(tracked->left, &left_);
+  std::vector<FeatureObservation>& observations = tracked->frame.observations;
+  std::vector<cv::Point2f> start;
+  if (start_from_previous_) {
+    start.reserve(observations.size());
+    for (const FeatureObservation& o : observations) {
+      cv::Point2f uv(static_cast<float>(o.uv.x()),
+                     static_cast<float>(o.uv.y()));
+      const auto it = previous_offset_.find(o.feature_id);
+      if (it != previous_offset_.end()) uv += it->second;
+      start.push_back(uv);
+    }
+  }
   const std::vector<FeatureObservation> matches = matcher_->Match(
-      left_, right, tracked->frame.observations, &tracked->stats.stereo);
-  tracked->frame.observations.insert(tracked->frame.observations.end(),
-                                     matches.begin(), matches.end());
+      left_, right, observations, start, &tracked->stats.stereo);
+  if (start_from_previous_) {
+    // Matches keep the order of the left observations they come from.
+    previous_offset_.clear();
+    size_t i = 0;
+    for (const FeatureObservation& m : matches) {
+      while (observations[i].feature_id != m.feature_id) ++i;
+      previous_offset_[m.feature_id] =
+          cv::Point2f(static_cast<float>(m.uv.x() - observations[i].uv.x()),
+                      static_cast<float>(m.uv.y() - observations[i].uv.y()));
+    }
+  }
+  observations.insert(observations.end(), matches.begin(), matches.end());
   tracked->stats.stereo_matched = true;
 }
 

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <unordered_map>
 
 #include "frontend/feature_tracker.h"
 #include "frontend/frontend_options.h"
@@ -60,7 +61,10 @@ class ImageFrontend {
   void PrepareRight(const cv::Mat& right, StereoImage* prepared) const;
   // Adds the matches of `tracked`'s cam0 features into the prepared right
   // image (nothing when `right` is empty) and sets tracked->stats. The left
-  // image is prepared into buffers kept from call to call.
+  // image is prepared into buffers kept from call to call. With
+  // stereo_matcher.start_from_previous the match starts from the offsets of
+  // the last MatchRight's matches, so MatchRight, like TrackLeft, must see
+  // the frames in order.
   void MatchRight(const StereoImage& right, TrackedFrame* tracked);
 
   bool stereo() const { return matcher_ != nullptr; }
@@ -72,8 +76,11 @@ class ImageFrontend {
   // CLAHE for the right images (when tracker.clahe): cv::CLAHE keeps
   // buffers, so the right image, prepared on its own thread, has its own.
   cv::Ptr<cv::CLAHE> right_clahe_;
-  StereoImage left_;  // MatchRight's buffers for the prepared left image
+  StereoImage left_;   // MatchRight's buffers for the prepared left image
   StereoImage right_;  // Process's buffers for the prepared right image
+  bool start_from_previous_ = false;
+  // The last matched frame's right minus left pixel per feature id [px].
+  std::unordered_map<int64_t, cv::Point2f> previous_offset_;
   FrontendStats stats_;
 };
 

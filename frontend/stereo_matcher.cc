@@ -72,8 +72,7 @@ bool StereoMatcher::TriangulateDepth(const Eigen::Vector2d& xy0,
   return true;
 }
 
-void StereoMatcher::Prepare(const cv::Mat& image,
-                            StereoImage* prepared) const {
+void StereoMatcher::Prepare(const cv::Mat& image, StereoImage* prepared) const {
   if (options_.equalize) {
     cv::equalizeHist(image, prepared->equalised);
     BuildKltPyramid(prepared->equalised, options_.klt, &prepared->pyramid);
@@ -118,6 +117,19 @@ std::vector<FeatureObservation> StereoMatcher::Match(
     const StereoImage& left, const StereoImage& right,
     const std::vector<FeatureObservation>& left_observations,
     StereoStats* stats) const {
+  return Match(left, right, left_observations, {}, stats);
+}
+
+std::vector<FeatureObservation> StereoMatcher::Match(
+    const StereoImage& left, const StereoImage& right,
+    const std::vector<FeatureObservation>& left_observations,
+    const std::vector<cv::Point2f>& start, StereoStats* stats) const {
+  if (!start.empty() && start.size() != left_observations.size()) {
+    throw std::invalid_argument(
+        "StereoMatcher::Match: " + std::to_string(start.size()) +
+        " start pixels for " + std::to_string(left_observations.size()) +
+        " left observations");
+  }
   StereoStats counts;
   std::vector<FeatureObservation> matches;
   std::vector<cv::Point2f> uv0;
@@ -128,9 +140,12 @@ std::vector<FeatureObservation> StereoMatcher::Match(
   }
   std::vector<cv::Point2f> uv1, back;
   std::vector<uchar> ok, ok_back;
-  TrackKlt(left.pyramid, right.pyramid, options_.klt, uv0, {}, &uv1, &ok);
-  TrackKlt(right.pyramid, left.pyramid, options_.klt, uv1, uv0, &back,
-           &ok_back);
+  // OpenCV starts a point without a guess at its own position, so a start
+  // equal to the left pixel gives the unguided match bit for bit.
+  TrackKlt(left.pyramid, right.pyramid, options_.klt, uv0, start, &uv1, &ok);
+  KltOptions reverse = options_.klt;
+  reverse.pyramid_levels = options_.reverse_pyramid_levels;
+  TrackKlt(right.pyramid, left.pyramid, reverse, uv1, uv0, &back, &ok_back);
 
   const double max_reverse2 = options_.max_reverse_px * options_.max_reverse_px;
   const int w = right_.calibration().width, h = right_.calibration().height;

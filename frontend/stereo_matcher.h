@@ -70,6 +70,16 @@ class StereoMatcher {
       const StereoImage& left, const StereoImage& right,
       const std::vector<FeatureObservation>& left_observations,
       StereoStats* stats = nullptr) const;
+  // The same, the left -> right LK of left_observations[i] started at the
+  // right pixel start[i] instead of at its left pixel (an empty `start`:
+  // every one at its left pixel, as above). The checks are unchanged.
+  // Throws std::invalid_argument when `start` is neither empty nor of
+  // left_observations' size.
+  std::vector<FeatureObservation> Match(
+      const StereoImage& left, const StereoImage& right,
+      const std::vector<FeatureObservation>& left_observations,
+      const std::vector<cv::Point2f>& start,
+      StereoStats* stats = nullptr) const;
 
   // `image` as Match reads it (8-bit grey of the left / right camera's size,
   // prepared as FeatureTracker::Preprocess does, else

@@ -9,10 +9,12 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cstring>
 #include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
+#include <random>
 #include <vector>
 
 #include "frontend/feature_tracker.h"
@@ -145,6 +147,68 @@ TEST_F(ZoomingRealFrames, APatchThatNoLongerLooksLikeItsAnchorIsDropped) {
   EXPECT_EQ(results[1], AnchorResult::kDropped);
   refiner.Keep({1});
   EXPECT_THROW(refiner.Refine(changed, {2}, &points), std::out_of_range);
+}
+
+// The refiner's sampling as it was written before it was made faster: the
+// point from Eigen's product, then a bilinear read with clamped borders.
+float PlainBilinear(const cv::Mat& image, float u, float v) {
+  u = std::clamp(u, 0.0f, static_cast<float>(image.cols - 1));
+  v = std::clamp(v, 0.0f, static_cast<float>(image.rows - 1));
+  const int x = std::min(static_cast<int>(u), image.cols - 2);
+  const int y = std::min(static_cast<int>(v), image.rows - 2);
+  const float a = u - x, b = v - y;
+  const float* r0 = image.ptr<float>(y) + x;
+  const float* r1 = image.ptr<float>(y + 1) + x;
+  return (1 - b) * ((1 - a) * r0[0] + a * r0[1]) +
+         b * ((1 - a) * r1[0] + a * r1[1]);
+}
+
+// Warps that scale, turn and shear, at points inside the image, near its
+// borders and beyond them: every sample equals the plain expressions' bit
+// for bit (==, not near), through both the vectorised inner path and the
+// clamped one.
+TEST(SampleAffinePatch, EqualsThePlainPerPixelExpressionsBitForBit) {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> grey(0.0f, 255.0f);
+  cv::Mat image(120, 160, CV_32F);
+  for (int r = 0; r < image.rows; ++r) {
+    for (int c = 0; c < image.cols; ++c) image.at<float>(r, c) = grey(rng);
+  }
+  std::uniform_real_distribution<float> entry(-0.6f, 0.6f);
+  std::uniform_real_distribution<float> u_dist(-15.0f, 175.0f);
+  std::uniform_real_distribution<float> v_dist(-15.0f, 135.0f);
+  std::vector<float> buffer;
+  Eigen::VectorXf samples;
+  int inside = 0, clamped = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int half = trial % 3 == 0 ? 10 : 1 + trial % 7;
+    Eigen::Matrix2f M = Eigen::Matrix2f::Identity();
+    if (trial % 5 != 0) {
+      M += Eigen::Matrix2f::NullaryExpr([&] { return entry(rng); });
+    }
+    const Eigen::Vector2f t(u_dist(rng), v_dist(rng));
+    SampleAffinePatch(image, M, t, half, &buffer, &samples);
+    const int side = 2 * half + 1;
+    ASSERT_EQ(samples.size(), side * side);
+    bool all_inside = true;
+    for (int i = 0; i < side; ++i) {
+      for (int j = 0; j < side; ++j) {
+        const Eigen::Vector2f q =
+            M * Eigen::Vector2f(static_cast<float>(j - half),
+                                static_cast<float>(i - half)) +
+            t;
+        all_inside = all_inside && q.x() >= 1 && q.y() >= 1 &&
+                     q.x() < image.cols - 2 && q.y() < image.rows - 2;
+        const float expected = PlainBilinear(image, q.x(), q.y());
+        ASSERT_EQ(std::memcmp(&expected, &samples[i * side + j], 4), 0)
+            << "trial " << trial << " pixel (" << i << ", " << j
+            << "): " << expected << " vs " << samples[i * side + j];
+      }
+    }
+    ++(all_inside ? inside : clamped);
+  }
+  EXPECT_GT(inside, 500);
+  EXPECT_GT(clamped, 500);
 }
 
 }  // namespace

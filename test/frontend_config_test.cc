@@ -69,6 +69,13 @@ TEST(FrontendConfig, ReadsEveryKey) {
   EXPECT_FALSE(ReadText(DefaultWith("anchor_refinement: true",
                                     "anchor_refinement: false"))
                    .tracker.anchor_refinement);
+  EXPECT_EQ(ReadText(DefaultWith("reverse_pyramid_levels: 0",
+                                 "reverse_pyramid_levels: 2"))
+                .stereo_matcher.reverse_pyramid_levels,
+            2);
+  EXPECT_FALSE(ReadText(DefaultWith("start_from_previous: true",
+                                    "start_from_previous: false"))
+                   .stereo_matcher.start_from_previous);
   EXPECT_DOUBLE_EQ(ReadText(DefaultWith("anchor_max_correction_px: 2.0",
                                         "anchor_max_correction_px: 3.5"))
                        .tracker.anchor_max_correction_px,
@@ -81,10 +88,10 @@ TEST(FrontendConfig, ReadsEveryKey) {
                                  "fundamental_baseline_frames: 0"))
                 .tracker.fundamental_baseline_frames,
             0);
-  EXPECT_EQ(ReadText(DefaultWith("refill_min_missing: 5",
-                                 "refill_min_missing: 12"))
-                .tracker.refill_min_missing,
-            12);
+  EXPECT_EQ(
+      ReadText(DefaultWith("refill_min_missing: 5", "refill_min_missing: 12"))
+          .tracker.refill_min_missing,
+      12);
 }
 
 TEST(FrontendConfig, ShippedFilesEqualTheBuiltInTracker) {
@@ -99,6 +106,13 @@ TEST(FrontendConfig, ShippedFilesEqualTheBuiltInTracker) {
     EXPECT_EQ(o.fundamental_baseline_frames, d.fundamental_baseline_frames)
         << name;
     EXPECT_EQ(o.refill_min_missing, d.refill_min_missing) << name;
+    const StereoMatcherOptions m =
+        LoadFrontendOptions(ConfigFile(name)).stereo_matcher;
+    const StereoMatcherOptions dm;
+    EXPECT_EQ(m.start_from_previous, dm.start_from_previous) << name;
+    EXPECT_EQ(m.reverse_pyramid_levels, dm.reverse_pyramid_levels) << name;
+    EXPECT_EQ(m.klt.max_iterations, dm.klt.max_iterations) << name;
+    EXPECT_EQ(m.klt.window_px, dm.klt.window_px) << name;
   }
 }
 

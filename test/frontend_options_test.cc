@@ -25,6 +25,17 @@ TEST(FrontendOptions, MessageNamesTheBlockAndTheField) {
   options.stereo_matcher.max_epipolar_px = -1.0;
   EXPECT_FALSE(options.Validate(&message));
   EXPECT_EQ(message, "stereo_matcher.max_epipolar_px must be > 0 (got -1)");
+
+  options = FrontendOptions();
+  options.stereo_matcher.reverse_pyramid_levels = 4;
+  EXPECT_FALSE(options.Validate(&message));
+  EXPECT_EQ(message,
+            "stereo_matcher.reverse_pyramid_levels must be in [0, "
+            "klt_pyramid_levels = 3] (got 4)");
+  options.stereo_matcher.reverse_pyramid_levels = -1;
+  EXPECT_FALSE(options.Validate(&message));
+  options.stereo_matcher.reverse_pyramid_levels = 3;
+  EXPECT_TRUE(options.Validate(&message));
 }
 
 TEST(FrontendOptions, RejectsEachOutOfRangeTrackerField) {

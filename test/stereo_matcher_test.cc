@@ -4,11 +4,14 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "frontend/feature_tracker.h"
@@ -221,6 +224,83 @@ TEST_F(RealStereoPairs, ReusedBuffersMatchAsFreshOnes) {
     EXPECT_EQ(reused[i].uv, fresh[i].uv) << "match " << i;
   }
   EXPECT_EQ(reused_stats.lost_reverse, fresh_stats.lost_reverse);
+}
+
+// A start at each feature's own left pixel is where OpenCV starts a point
+// without a guess: the same matches bit for bit. A start of the wrong size
+// is refused, naming both sizes.
+TEST_F(RealStereoPairs, StartAtTheLeftPixelsMatchesAsWithoutAStart) {
+  const StereoMatcher matcher{CameraModel(cam0_), CameraModel(cam1_),
+                              StereoMatcherOptions()};
+  const cv::Mat left = testing::V101Image(0, 10);
+  const StereoImage l = matcher.PrepareLeft(left);
+  const StereoImage r = matcher.PrepareRight(testing::V101Image(1, 10));
+  const std::vector<FeatureObservation> features = LeftFeatures(left);
+  std::vector<cv::Point2f> start;
+  for (const FeatureObservation& o : features) {
+    start.emplace_back(static_cast<float>(o.uv.x()),
+                       static_cast<float>(o.uv.y()));
+  }
+  StereoStats plain_stats, started_stats;
+  const std::vector<FeatureObservation> plain =
+      matcher.Match(l, r, features, &plain_stats);
+  const std::vector<FeatureObservation> started =
+      matcher.Match(l, r, features, start, &started_stats);
+  ASSERT_GT(plain.size(), 50u);
+  ASSERT_EQ(started.size(), plain.size());
+  for (size_t i = 0; i < plain.size(); ++i) {
+    EXPECT_EQ(started[i].feature_id, plain[i].feature_id);
+    EXPECT_EQ(started[i].uv, plain[i].uv);  // ==, bit for bit
+  }
+  EXPECT_EQ(started_stats.lost_reverse, plain_stats.lost_reverse);
+  start.pop_back();
+  try {
+    matcher.Match(l, r, features, start);
+    FAIL() << "a start of the wrong size was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(std::to_string(start.size()) +
+                                         " start pixels for " +
+                                         std::to_string(features.size())),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// The reverse check on fewer pyramid levels changes only which matches pass
+// it: the left -> right LK is the same, so a match both settings accept is
+// the same pixel (==). On these pairs the check on full resolution alone
+// lets a few more matches through (the coarse levels can carry a patch
+// that differs away from its start).
+TEST_F(RealStereoPairs, ReverseCheckLevelsChangeOnlyWhichMatchesPass) {
+  StereoMatcherOptions all_levels;
+  all_levels.reverse_pyramid_levels = all_levels.klt.pyramid_levels;
+  const StereoMatcher coarse{CameraModel(cam0_), CameraModel(cam1_),
+                             all_levels};
+  const StereoMatcher fine{CameraModel(cam0_), CameraModel(cam1_),
+                           StereoMatcherOptions()};
+  size_t n_coarse = 0, n_fine = 0, common = 0;
+  for (size_t k : {0u, 30u, 60u, 90u}) {
+    const cv::Mat left = testing::V101Image(0, k);
+    const cv::Mat right = testing::V101Image(1, k);
+    const auto features = LeftFeatures(left);
+    const auto a = coarse.Match(left, right, features);
+    const auto b = fine.Match(left, right, features);
+    std::map<int64_t, Eigen::Vector2d> by_id;
+    for (const FeatureObservation& o : a) by_id[o.feature_id] = o.uv;
+    for (const FeatureObservation& o : b) {
+      const auto it = by_id.find(o.feature_id);
+      if (it == by_id.end()) continue;
+      EXPECT_EQ(it->second, o.uv) << "feature " << o.feature_id;
+      ++common;
+    }
+    n_coarse += a.size();
+    n_fine += b.size();
+  }
+  std::printf("reverse check on 4 levels: %zu matches, on 1: %zu, common %zu\n",
+              n_coarse, n_fine, common);
+  EXPECT_GT(common, 200u);
+  EXPECT_NE(n_fine, n_coarse) << "the option changed nothing";
+  EXPECT_LT(std::abs(static_cast<double>(n_fine) - n_coarse), 0.1 * n_coarse);
 }
 
 }  // namespace
