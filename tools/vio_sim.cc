@@ -91,7 +91,7 @@ constexpr char kUsage[] =
     "  --fit-bias-knot-spacing S  joint fit: of the bias splines [s]\n"
     "                       (default 1)\n"
     "  --fit-position-sigma M, --fit-rotation-sigma RAD  joint fit: the\n"
-    "                       ground truth's noise (default 0.001 m, 0.001 rad)\n"
+    "                       ground truth's noise (default 0.003 m, 0.003 rad)\n"
     "  --fit-knot-spacing S joint fit: of the spline [s] (default 0.005)\n";
 
 Args ParseArgs(int argc, char** argv) {
