@@ -153,10 +153,10 @@ FlightSimulation SimulateFlight(const SimulatorOptions& preset,
     out.imu_fitted = true;
     out.imu_fit = joint->report;
   }
-  out.followed = joint.has_value()
-                     ? std::make_shared<const TrajectoryCurve>(joint->curve)
-                     : std::make_shared<const TrajectoryCurve>(poses,
-                                                               options.curve);
+  out.followed =
+      joint.has_value()
+          ? std::make_shared<const TrajectoryCurve>(joint->curve)
+          : std::make_shared<const TrajectoryCurve>(poses, options.curve);
   const TrajectoryCurve& curve = *out.followed;
   out.curve = curve.report();
   out.cameras_from_folder = !flight.cameras.empty();

@@ -60,8 +60,8 @@ enum class FlightCurve { kGroundTruth, kGroundTruthAndImu };
 struct FlightOptions {
   FlightImu imu = FlightImu::kSynthetic;
   FlightCurve fit = FlightCurve::kGroundTruth;
-  CurveFitOptions curve;             // kGroundTruth
-  ImuCurveFitOptions imu_curve;      // kGroundTruthAndImu
+  CurveFitOptions curve;         // kGroundTruth
+  ImuCurveFitOptions imu_curve;  // kGroundTruthAndImu
   FlightRoomOptions room;
 
   bool Validate(std::string* message) const;

@@ -41,9 +41,9 @@ struct ImuCurveFitOptions {
   double gravity_m_s2 = 9.81;        // g_w = (0, 0, -g) [m/s^2]
   // Ground-truth noise: 3 mm and 3 mrad, three times the ground-truth-only
   // fit's: the recorded accelerometer disagrees with EuRoC's positions by
-  // about 1 cm at 1 s time scales, and at 1 mm the curve keeps most of that
-  // disagreement in the IMU (docs/recorded_flights.md, "The curve fitted to
-  // the ground truth and the IMU").
+  // the order of a centimetre over a second, and at 1 mm the curve keeps most
+  // of that disagreement in the IMU (docs/recorded_flights.md, "The curve
+  // fitted to the ground truth and the IMU").
   double position_sigma_m = 3e-3;    // [m]
   double rotation_sigma_rad = 3e-3;  // [rad]
   // Multipliers of the sensor.yaml white-noise densities and random walks.

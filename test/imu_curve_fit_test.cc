@@ -131,14 +131,14 @@ double WorstSecondOfGyro(const TrajectoryCurve& curve,
     Eigen::Quaterniond integrated = Eigen::Quaterniond::Identity();
     for (size_t k = first; k < first + 200; ++k) {
       const double dt = at(imu[k + 1].t_ns) - at(imu[k].t_ns);
-      const Eigen::Vector3d w = 0.5 * (imu[k].gyr + imu[k + 1].gyr) -
-                                b_g(imu[k].t_ns);
+      const Eigen::Vector3d w =
+          0.5 * (imu[k].gyr + imu[k + 1].gyr) - b_g(imu[k].t_ns);
       integrated = integrated * ExpQuaternion(w * dt);
     }
     const Eigen::Quaterniond a = curve.At(at(imu[first].t_ns)).q_w_b;
     const Eigen::Quaterniond b = curve.At(at(imu[first + 200].t_ns)).q_w_b;
-    worst = std::max(
-        worst, Log(integrated.conjugate() * (a.conjugate() * b)).norm());
+    worst = std::max(worst,
+                     Log(integrated.conjugate() * (a.conjugate() * b)).norm());
   }
   return worst;
 }
@@ -165,8 +165,8 @@ TEST(ImuCurveFit, RecordedImuAgreesWithTheJointCurve) {
   }
   // The ground truth's curve alone, with EuRoC's own gyroscope bias.
   const TrajectoryCurve gt_curve(poses, CurveFitOptions());
-  const double gt_worst = WorstSecondOfGyro(
-      gt_curve, imu, [&](int64_t) { return gt_bias; });
+  const double gt_worst =
+      WorstSecondOfGyro(gt_curve, imu, [&](int64_t) { return gt_bias; });
   const ImuCurveFit fit =
       FitCurveToImu(poses, imu, ImuNoise(), ImuCurveFitOptions());
   const double fit_worst = WorstSecondOfGyro(

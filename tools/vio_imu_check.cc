@@ -58,9 +58,10 @@ constexpr char kUsage[] =
     "                       to the ground truth and the recorded IMU together\n"
     "                       (dataset/imu_curve_fit.h), the fitted biases\n"
     "                       removed from the samples first (default\n"
-    "                       ground-truth: the curve of the ground truth alone)\n"
-    "  --fit-noise-scale S, --fit-bias-walk-scale S, --fit-bias-knot-spacing S,\n"
-    "  --fit-position-sigma M, --fit-rotation-sigma RAD, --fit-knot-spacing S\n"
+    "                       ground-truth: the ground truth's curve alone)\n"
+    "  --fit-noise-scale S, --fit-bias-walk-scale S,\n"
+    "  --fit-bias-knot-spacing S, --fit-position-sigma M,\n"
+    "  --fit-rotation-sigma RAD, --fit-knot-spacing S\n"
     "                       the joint fit's options, as vio_sim's\n";
 
 Args ParseArgs(int argc, char** argv) {

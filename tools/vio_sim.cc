@@ -182,7 +182,8 @@ Args ParseArgs(int argc, char** argv) {
   }
   if (args.fit == vio::FlightCurve::kGroundTruthAndImu &&
       args.imu != vio::FlightImu::kRecorded) {
-    throw std::invalid_argument("--curve imu needs --flight and --imu recorded");
+    throw std::invalid_argument(
+        "--curve imu needs --flight and --imu recorded");
   }
   return args;
 }
@@ -237,8 +238,7 @@ vio::Simulation SimulateFlightToFolder(
           ? (f.imu_fitted ? options.imu_curve.knot_spacing_s
                           : options.curve.knot_spacing_s)
           : options.curve.rotation_knot_spacing_s,
-      c.samples,
-      1e3 * c.position_rms_m, 1e3 * c.position_max_m,
+      c.samples, 1e3 * c.position_rms_m, 1e3 * c.position_max_m,
       c.rotation_rms_rad * 180.0 / M_PI, c.rotation_max_rad * 180.0 / M_PI);
   if (f.imu_fitted) {
     const vio::ImuCurveFitReport& j = f.imu_fit;
