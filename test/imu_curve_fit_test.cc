@@ -175,7 +175,7 @@ TEST(ImuCurveFit, RecordedImuAgreesWithTheJointCurve) {
   EXPECT_LT(fit_worst, 0.25 * gt_worst);
   EXPECT_LT(fit_worst, 3e-4);
   // The curve stays near the ground truth: within twice its assumed noise
-  // (3 mm, 3 mrad; measured 4.1 mm and 0.4 mrad rms).
+  // (3 mm, 3 mrad; position measured 4.1 mm rms).
   EXPECT_LT(fit.report.position_rms_m, 6e-3);
   EXPECT_LT(fit.report.rotation_rms_rad, 3e-3);
   std::printf("worst second: joint %.3f mrad, ground truth only %.3f mrad\n",
