@@ -1,6 +1,7 @@
 #include "dataset/flight_simulation.h"
 
 #include <algorithm>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
@@ -97,6 +98,14 @@ bool FlightOptions::Validate(std::string* message) const {
     *message = "curve." + m;
     return false;
   }
+  if (!imu_curve.Validate(&m)) {
+    *message = "imu_curve." + m;
+    return false;
+  }
+  if (fit == FlightCurve::kGroundTruthAndImu && imu != FlightImu::kRecorded) {
+    *message = "the curve fitted to the IMU needs the recorded IMU";
+    return false;
+  }
   if (!room.Validate(&m)) {
     *message = "room." + m;
     return false;
@@ -133,8 +142,22 @@ FlightSimulation SimulateFlight(const SimulatorOptions& preset,
                                 ": the IMU recording and the ground truth "
                                 "do not overlap");
   }
-  const TrajectoryCurve curve(poses, options.curve);
   FlightSimulation out;
+  std::optional<ImuCurveFit> joint;
+  if (options.fit == FlightCurve::kGroundTruthAndImu) {
+    ImuCurveFitOptions fit = options.imu_curve;
+    fit.gravity_m_s2 = preset.gravity_m_s2;  // the simulation's own g
+    joint.emplace(FitCurveToImu(
+        poses, flight.imu, flight.has_imu_noise ? flight.imu_noise : ImuNoise(),
+        fit));
+    out.imu_fitted = true;
+    out.imu_fit = joint->report;
+  }
+  out.followed =
+      joint.has_value()
+          ? std::make_shared<const TrajectoryCurve>(joint->curve)
+          : std::make_shared<const TrajectoryCurve>(poses, options.curve);
+  const TrajectoryCurve& curve = *out.followed;
   out.curve = curve.report();
   out.cameras_from_folder = !flight.cameras.empty();
   const SimulatorOptions o =
@@ -162,7 +185,12 @@ FlightSimulation SimulateFlight(const SimulatorOptions& preset,
   inputs.frame_stamps_ns = &stamps;
   out.simulation = Simulate(o, inputs);
   out.room.landmarks_w.clear();
-  if (recorded && flight.has_biases) {
+  if (joint.has_value()) {
+    for (StampedState& truth : out.simulation.ground_truth) {
+      truth.b_g = joint->GyroBiasAt(truth.t_ns);
+      truth.b_a = joint->AccelBiasAt(truth.t_ns);
+    }
+  } else if (recorded && flight.has_biases) {
     for (StampedState& truth : out.simulation.ground_truth) {
       InterpolateBiases(flight.ground_truth, &truth);
     }

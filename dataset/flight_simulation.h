@@ -17,10 +17,12 @@
 // recorded mode and the simulated ones in the synthetic mode.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "dataset/flight_room.h"
+#include "dataset/imu_curve_fit.h"
 #include "dataset/simulator.h"
 #include "dataset/trajectory.h"
 #include "dataset/trajectory_curve.h"
@@ -49,9 +51,17 @@ struct RecordedFlight {
 
 enum class FlightImu { kSynthetic, kRecorded };
 
+// What the curve the body follows is fitted to: the ground truth alone
+// (dataset/trajectory_curve.h), or the ground truth and the recorded IMU
+// together (dataset/imu_curve_fit.h; recorded IMU only), so that the cameras
+// move as the recorded IMU says.
+enum class FlightCurve { kGroundTruth, kGroundTruthAndImu };
+
 struct FlightOptions {
   FlightImu imu = FlightImu::kSynthetic;
-  CurveFitOptions curve;
+  FlightCurve fit = FlightCurve::kGroundTruth;
+  CurveFitOptions curve;         // kGroundTruth
+  ImuCurveFitOptions imu_curve;  // kGroundTruthAndImu
   FlightRoomOptions room;
 
   bool Validate(std::string* message) const;
@@ -64,13 +74,20 @@ struct FlightSimulation {
   double path_length_m = 0.0;  // of the curve over the span [m]
   bool cameras_from_folder = false;  // else EuRoC's built-in calibration
   int64_t recorded_frames = 0;  // frames at recorded stamps (rest: at rate)
+  // kGroundTruthAndImu: how the joint fit went (curve holds its ground-truth
+  // residuals too).
+  bool imu_fitted = false;
+  ImuCurveFitReport imu_fit;
+  // The curve the body followed (for rendering images along it).
+  std::shared_ptr<const TrajectoryCurve> followed;
 };
 
 // Simulates the flight with the preset's IMU noise, camera noise and track
 // model (its motion, room and duration are not used; its seed is). Throws
 // std::invalid_argument for invalid options, a flight with no ground truth,
-// the recorded mode without an IMU recording, or an IMU that does not
-// overlap the ground truth.
+// the recorded mode without an IMU recording, an IMU that does not overlap
+// the ground truth, or the joint fit with the synthetic IMU. With the joint
+// fit the ground truth written holds the fitted biases.
 FlightSimulation SimulateFlight(const SimulatorOptions& preset,
                                 const FlightOptions& options,
                                 const RecordedFlight& flight);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "geometry/so3.h"
 
@@ -259,6 +260,14 @@ TrajectoryCurve::TrajectoryCurve(const std::vector<StampedPose>& poses,
     report_.iterations = rotation_report.iterations;
   }
 }
+
+TrajectoryCurve::TrajectoryCurve(int64_t start_ns, int64_t end_ns,
+                                 PoseSpline spline,
+                                 const CurveFitReport& report)
+    : start_ns_(start_ns),
+      end_ns_(end_ns),
+      report_(report),
+      spline_(std::move(spline)) {}
 
 SimState TrajectoryCurve::At(double t) const {
   const PoseSplineState x = spline_.Evaluate(t);

@@ -67,6 +67,10 @@ class TrajectoryCurve : public TrajectorySource {
   // knot spacing; options valid. Throws std::invalid_argument otherwise.
   TrajectoryCurve(const std::vector<StampedPose>& poses,
                   const CurveFitOptions& options);
+  // A curve fitted elsewhere (dataset/imu_curve_fit.h): `spline` starts at
+  // t = 0 (start_ns) and spans at least end_ns - start_ns.
+  TrajectoryCurve(int64_t start_ns, int64_t end_ns, PoseSpline spline,
+                  const CurveFitReport& report);
 
   // The state at t seconds after start_ns(), t in [0, duration_s()]; throws
   // std::out_of_range outside.

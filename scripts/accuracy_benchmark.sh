@@ -11,6 +11,7 @@
 #
 # usage: scripts/accuracy_benchmark.sh [--build DIR] [--work DIR] [--data DIR]
 #            [--only REGEX] [--mono-config FILE] [--stereo-config FILE]
+#            [--curve ground-truth|imu|both] [--seed N]
 #   --build DIR   the build folder holding tools/ (default build)
 #   --work DIR    simulated folders and replay logs (default
 #                 DIR_OF_BUILD/accuracy_benchmark); folders are made when
@@ -19,6 +20,12 @@
 #   --only REGEX  only the rows whose name matches (grep -E)
 #   --mono-config, --stereo-config  replay configurations (default
 #                 config/default.yaml, config/stereo.yaml)
+#   --curve       the recorded-IMU flights' curve (vio_sim --curve):
+#                 ground-truth (default; rows *_recorded_*), imu (fitted to
+#                 the ground truth and the recorded IMU together; rows
+#                 *_recorded_imucurve_*), or both
+#   --seed N      vio_sim's seed for the recorded flights (default: the
+#                 preset's, 1); N other than 1 adds _seedN to their rows
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build"
@@ -27,6 +34,8 @@ data="$root/../shared/data"
 only="."
 mono_config="$root/config/default.yaml"
 stereo_config="$root/config/stereo.yaml"
+curve="ground-truth"
+seed=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --build) build="$2"; shift 2 ;;
@@ -35,10 +44,17 @@ while [ $# -gt 0 ]; do
     --only) only="$2"; shift 2 ;;
     --mono-config) mono_config="$2"; shift 2 ;;
     --stereo-config) stereo_config="$2"; shift 2 ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    --curve) curve="$2"; shift 2 ;;
+    --seed) seed="$2"; shift 2 ;;
+    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
     *) echo "error: unknown argument $1 (see --help)" >&2; exit 1 ;;
   esac
 done
+case "$curve" in
+  ground-truth|imu|both) ;;
+  *) echo "error: --curve expects ground-truth, imu or both (got $curve)" >&2
+     exit 1 ;;
+esac
 [ -n "$work" ] || work="$build/accuracy_benchmark"
 sim="$build/tools/vio_sim"
 replay="$build/tools/vio_replay"
@@ -112,12 +128,22 @@ done
 for flight in "${flights[@]}"; do
   label="${flight%%:*}"
   folder="${flight#*:}"
-  for imu in synthetic recorded; do
-    name="${label}_${imu}"
+  # variant: IMU, the curve vio_sim fits (ground-truth or imu), row suffix.
+  variants=("synthetic:ground-truth:")
+  [ "$curve" = imu ] || variants+=("recorded:ground-truth:")
+  [ "$curve" = ground-truth ] || variants+=("recorded:imu:_imucurve")
+  for variant in "${variants[@]}"; do
+    IFS=: read -r imu fit suffix <<< "$variant"
+    name="${label}_${imu}${suffix}"
+    seed_args=()
+    if [ -n "$seed" ] && [ "$seed" != 1 ]; then
+      name="${name}_seed${seed}"
+      seed_args=(--seed "$seed")
+    fi
     echo "${name}_mono ${name}_stereo" | grep -Eq "$only" || continue
     # One stereo folder serves both replays (mono uses its cam0).
     make_folder "$name" "$sim" --config "$root/config/sim_stereo.yaml" \
-      --flight "$folder" --imu "$imu"
+      --flight "$folder" --imu "$imu" --curve "$fit" "${seed_args[@]}"
     run "${name}_mono" "$work/$name" "$imu" mono "$mono_config"
     run "${name}_stereo" "$work/$name" "$imu" stereo "$stereo_config"
   done

@@ -8,11 +8,13 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "config/recorded_flight.h"
+#include "dataset/imu_curve_fit.h"
 #include "dataset/imu_curve_residual.h"
 #include "dataset/trajectory_curve.h"
 #include "tools/command_line.h"
@@ -26,13 +28,17 @@ struct Args {
   double rotation_knot_spacing_s = 0.0;  // 0: knot_spacing_s
   double max_offset_s = vio::ImuCurveResidualOptions().max_offset_s;
   double offset_s = 0.0;  // applied to the ground truth before the fit
+  bool joint = false;     // --curve imu: fitted to ground truth and IMU
+  vio::ImuCurveFitOptions imu_curve;
   bool help = false;
 };
 
 constexpr char kUsage[] =
     "usage: vio_imu_check FOLDER [--ground-truth FILE] [--knot-spacing S]\n"
     "                     [--rotation-knot-spacing S] [--max-offset S]\n"
-    "                     [--offset S]\n"
+    "                     [--offset S] [--curve ground-truth|imu]\n"
+    "                     [--fit-noise-scale S] [--fit-bias-walk-scale S]\n"
+    "                     [--fit-bias-knot-spacing S]\n"
     "\n"
     "Fits vio_sim --flight's curve to FOLDER's ground truth and compares the\n"
     "recorded IMU (mav0/imu0/data.csv) with the curve's body rate and\n"
@@ -47,7 +53,16 @@ constexpr char kUsage[] =
     "  --max-offset S       offsets searched in [-S, S] (default 0.05)\n"
     "  --offset S           compare with the ground truth's stamps moved by\n"
     "                       -S, to see what correcting an offset would do\n"
-    "                       (default 0)\n";
+    "                       (default 0)\n"
+    "  --curve imu          compare with vio_sim --curve imu's curve, fitted\n"
+    "                       to the ground truth and the recorded IMU together\n"
+    "                       (dataset/imu_curve_fit.h), the fitted biases\n"
+    "                       removed from the samples first (default\n"
+    "                       ground-truth: the ground truth's curve alone)\n"
+    "  --fit-noise-scale S, --fit-bias-walk-scale S,\n"
+    "  --fit-bias-knot-spacing S, --fit-position-sigma M,\n"
+    "  --fit-rotation-sigma RAD, --fit-knot-spacing S\n"
+    "                       the joint fit's options, as vio_sim's\n";
 
 Args ParseArgs(int argc, char** argv) {
   Args args;
@@ -64,6 +79,27 @@ Args ParseArgs(int argc, char** argv) {
       args.max_offset_s = line.Number<double>();
     } else if (flag == "--offset") {
       args.offset_s = line.Number<double>();
+    } else if (flag == "--curve") {
+      const std::string fit = line.Value();
+      if (fit != "ground-truth" && fit != "imu") {
+        throw std::invalid_argument(
+            "--curve expects ground-truth or imu (got '" + fit + "')");
+      }
+      args.joint = fit == "imu";
+    } else if (flag == "--fit-noise-scale") {
+      const double scale = line.Number<double>();
+      args.imu_curve.gyroscope_noise_scale = scale;
+      args.imu_curve.accelerometer_noise_scale = scale;
+    } else if (flag == "--fit-bias-walk-scale") {
+      args.imu_curve.bias_walk_scale = line.Number<double>();
+    } else if (flag == "--fit-bias-knot-spacing") {
+      args.imu_curve.bias_knot_spacing_s = line.Number<double>();
+    } else if (flag == "--fit-position-sigma") {
+      args.imu_curve.position_sigma_m = line.Number<double>();
+    } else if (flag == "--fit-rotation-sigma") {
+      args.imu_curve.rotation_sigma_rad = line.Number<double>();
+    } else if (flag == "--fit-knot-spacing") {
+      args.imu_curve.knot_spacing_s = line.Number<double>();
     } else if (flag == "--help" || flag == "-h") {
       args.help = true;
     } else if (!flag.empty() && flag[0] != '-' && args.flight.empty()) {
@@ -90,6 +126,25 @@ void PrintAxes(const char* what, const Eigen::Vector3d& v, double scale) {
               v.y() * scale, v.z() * scale);
 }
 
+void PrintJointFit(const vio::ImuCurveFitReport& j,
+                   const vio::ImuCurveFitOptions& o) {
+  std::printf(
+      "joint fit (ground truth and IMU): %d control points every %.4f s, "
+      "bias knots every %.2f s, %d poses, %d IMU samples, %d Gauss-Newton "
+      "steps\n"
+      "  through the ground truth: position rms %.3f mm max %.2f mm, rotation "
+      "rms %.3f mrad max %.2f mrad\n"
+      "  IMU residual rms x, y, z: gyroscope %.3f, %.3f, %.3f mrad/s, "
+      "accelerometer %.4f, %.4f, %.4f m/s^2\n",
+      j.control_points, o.knot_spacing_s, o.bias_knot_spacing_s, j.poses,
+      j.imu_samples, j.iterations, 1e3 * j.position_rms_m,
+      1e3 * j.position_max_m, 1e3 * j.rotation_rms_rad,
+      1e3 * j.rotation_max_rad, 1e3 * j.gyroscope_rms.x(),
+      1e3 * j.gyroscope_rms.y(), 1e3 * j.gyroscope_rms.z(),
+      j.accelerometer_rms.x(), j.accelerometer_rms.y(),
+      j.accelerometer_rms.z());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -113,11 +168,26 @@ int main(int argc, char** argv) {
     vio::CurveFitOptions fit;
     fit.knot_spacing_s = args.knot_spacing_s;
     fit.rotation_knot_spacing_s = args.rotation_knot_spacing_s;
-    const vio::TrajectoryCurve curve(poses, fit);
+    std::vector<vio::ImuSample> imu = flight.imu;
+    std::optional<vio::TrajectoryCurve> curve;
+    if (args.joint) {
+      const vio::ImuCurveFit joint = vio::FitCurveToImu(
+          poses, flight.imu,
+          flight.has_imu_noise ? flight.imu_noise : vio::ImuNoise(),
+          args.imu_curve);
+      PrintJointFit(joint.report, args.imu_curve);
+      for (vio::ImuSample& s : imu) {
+        s.gyr -= joint.GyroBiasAt(s.t_ns);
+        s.acc -= joint.AccelBiasAt(s.t_ns);
+      }
+      curve.emplace(joint.curve);
+    } else {
+      curve.emplace(poses, fit);
+    }
     vio::ImuCurveResidualOptions options;
     options.max_offset_s = args.max_offset_s;
     const vio::ImuCurveResidual r =
-        vio::CompareImuWithCurve(curve, flight.imu, options);
+        vio::CompareImuWithCurve(*curve, imu, options);
 
     std::printf("flight %s: %d IMU samples at %.1f Hz against the curve "
                 "(knots %.4f s, rotations %.4f s, ground truth moved by "

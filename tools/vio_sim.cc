@@ -38,6 +38,8 @@ struct Args {
   double knot_spacing_s = vio::CurveFitOptions().knot_spacing_s;
   double rotation_knot_spacing_s =
       vio::CurveFitOptions().rotation_knot_spacing_s;
+  vio::FlightCurve fit = vio::FlightCurve::kGroundTruth;
+  vio::ImuCurveFitOptions imu_curve;
 };
 
 constexpr char kUsage[] =
@@ -77,7 +79,20 @@ constexpr char kUsage[] =
     "                       mav0/imu0/data.csv passed through unchanged\n"
     "  --knot-spacing S     of the fitted B-spline [s] (default 0.05)\n"
     "  --rotation-knot-spacing S  of its rotations, fitted apart [s]\n"
-    "                       (default 0: the same as --knot-spacing)\n";
+    "                       (default 0: the same as --knot-spacing)\n"
+    "  --curve ground-truth|imu  what the curve is fitted to: the ground\n"
+    "                       truth alone (default), or the ground truth and\n"
+    "                       the recorded IMU together (--imu recorded only):\n"
+    "                       the cameras then move as the recorded IMU says\n"
+    "  --fit-noise-scale S  joint fit: the sensor.yaml white-noise densities\n"
+    "                       times S (default 1)\n"
+    "  --fit-bias-walk-scale S  joint fit: the random walks times S\n"
+    "                       (default 1)\n"
+    "  --fit-bias-knot-spacing S  joint fit: of the bias splines [s]\n"
+    "                       (default 1)\n"
+    "  --fit-position-sigma M, --fit-rotation-sigma RAD  joint fit: the\n"
+    "                       ground truth's noise (default 0.003 m, 0.003 rad)\n"
+    "  --fit-knot-spacing S joint fit: of the spline [s] (default 0.005)\n";
 
 Args ParseArgs(int argc, char** argv) {
   Args args;
@@ -127,6 +142,30 @@ Args ParseArgs(int argc, char** argv) {
         throw std::invalid_argument(
             "--rotation-knot-spacing expects seconds >= 0");
       }
+    } else if (flag == "--curve") {
+      const std::string fit = line.Value();
+      if (fit == "ground-truth") {
+        args.fit = vio::FlightCurve::kGroundTruth;
+      } else if (fit == "imu") {
+        args.fit = vio::FlightCurve::kGroundTruthAndImu;
+      } else {
+        throw std::invalid_argument(
+            "--curve expects ground-truth or imu (got '" + fit + "')");
+      }
+    } else if (flag == "--fit-noise-scale") {
+      const double scale = line.Number<double>();
+      args.imu_curve.gyroscope_noise_scale = scale;
+      args.imu_curve.accelerometer_noise_scale = scale;
+    } else if (flag == "--fit-bias-walk-scale") {
+      args.imu_curve.bias_walk_scale = line.Number<double>();
+    } else if (flag == "--fit-bias-knot-spacing") {
+      args.imu_curve.bias_knot_spacing_s = line.Number<double>();
+    } else if (flag == "--fit-position-sigma") {
+      args.imu_curve.position_sigma_m = line.Number<double>();
+    } else if (flag == "--fit-rotation-sigma") {
+      args.imu_curve.rotation_sigma_rad = line.Number<double>();
+    } else if (flag == "--fit-knot-spacing") {
+      args.imu_curve.knot_spacing_s = line.Number<double>();
     } else if (flag == "--help" || flag == "-h") {
       args.help = true;
     } else {
@@ -136,6 +175,15 @@ Args ParseArgs(int argc, char** argv) {
   if (args.flight.empty() &&
       (!args.ground_truth.empty() || args.imu != vio::FlightImu::kSynthetic)) {
     throw std::invalid_argument("--ground-truth and --imu need --flight");
+  }
+  std::string message;
+  if (!args.imu_curve.Validate(&message)) {
+    throw std::invalid_argument("--fit-*: " + message);
+  }
+  if (args.fit == vio::FlightCurve::kGroundTruthAndImu &&
+      args.imu != vio::FlightImu::kRecorded) {
+    throw std::invalid_argument(
+        "--curve imu needs --flight and --imu recorded");
   }
   return args;
 }
@@ -170,6 +218,8 @@ vio::Simulation SimulateFlightToFolder(
   options.imu = args.imu;
   options.curve.knot_spacing_s = args.knot_spacing_s;
   options.curve.rotation_knot_spacing_s = args.rotation_knot_spacing_s;
+  options.fit = args.fit;
+  options.imu_curve = args.imu_curve;
   const vio::FlightSimulation f = vio::SimulateFlight(preset, options, flight);
   vio::WriteSimulationFolder(f.simulation, args.out, folder);
   const vio::CurveFitReport& c = f.curve;
@@ -181,13 +231,29 @@ vio::Simulation SimulateFlightToFolder(
       "curve: %d control points every %.3f s (rotations every %.4f s), "
       "through %d poses: position rms %.2f mm max %.1f mm, rotation rms "
       "%.3f deg max %.2f deg\n",
-      c.control_points, options.curve.knot_spacing_s,
-      options.curve.rotation_knot_spacing_s > 0.0
-          ? options.curve.rotation_knot_spacing_s
-          : options.curve.knot_spacing_s,
-      c.samples,
-      1e3 * c.position_rms_m, 1e3 * c.position_max_m,
+      c.control_points,
+      f.imu_fitted ? options.imu_curve.knot_spacing_s
+                   : options.curve.knot_spacing_s,
+      f.imu_fitted || options.curve.rotation_knot_spacing_s <= 0.0
+          ? (f.imu_fitted ? options.imu_curve.knot_spacing_s
+                          : options.curve.knot_spacing_s)
+          : options.curve.rotation_knot_spacing_s,
+      c.samples, 1e3 * c.position_rms_m, 1e3 * c.position_max_m,
       c.rotation_rms_rad * 180.0 / M_PI, c.rotation_max_rad * 180.0 / M_PI);
+  if (f.imu_fitted) {
+    const vio::ImuCurveFitReport& j = f.imu_fit;
+    std::printf(
+        "curve fitted to the ground truth and the recorded IMU: %d control "
+        "points every %.4f s, bias knots every %.2f s, %d IMU samples, %d "
+        "Gauss-Newton steps; recorded IMU against it (fitted biases removed), "
+        "rms x, y, z: gyroscope %.2f, %.2f, %.2f mrad/s, accelerometer %.3f, "
+        "%.3f, %.3f m/s^2\n",
+        j.control_points, options.imu_curve.knot_spacing_s,
+        options.imu_curve.bias_knot_spacing_s, j.imu_samples, j.iterations,
+        1e3 * j.gyroscope_rms.x(), 1e3 * j.gyroscope_rms.y(),
+        1e3 * j.gyroscope_rms.z(), j.accelerometer_rms.x(),
+        j.accelerometer_rms.y(), j.accelerometer_rms.z());
+  }
   std::printf("path length %.1f m\n", f.path_length_m);
   const Eigen::Vector3d size = f.room.max_corner - f.room.min_corner;
   std::printf(
@@ -208,17 +274,9 @@ vio::Simulation SimulateFlightToFolder(
                   : flight.frame_stamps_path.c_str(),
               f.simulation.options.camera.cam0.rate_hz);
   if (args.render) {
-    // The same curve the simulation followed (the same fit of the same
-    // poses), so the images move exactly as the IMU says.
-    const vio::SimulatorOptions& o = f.simulation.options;
-    const int64_t end_ns = o.start_time_ns + std::llround(o.duration_s * 1e9);
-    std::vector<vio::StampedPose> poses;
-    for (const vio::StampedState& s : flight.ground_truth) {
-      if (s.t_ns >= o.start_time_ns && s.t_ns <= end_ns) {
-        poses.push_back({s.t_ns, s.p_w_b, s.q_w_b});
-      }
-    }
-    auto curve = std::make_shared<vio::TrajectoryCurve>(poses, options.curve);
+    // The curve the simulation followed, so the images move exactly as the
+    // simulated IMU says.
+    const std::shared_ptr<const vio::TrajectoryCurve>& curve = f.followed;
     RenderImages(
         f.simulation, f.room.min_corner, f.room.max_corner, render,
         vio::TrajectoryBodyPose(curve, curve->start_ns(), curve->duration_s()),
