@@ -18,6 +18,7 @@
 #include "dataset/imu_curve_residual.h"
 #include "dataset/trajectory_curve.h"
 #include "tools/command_line.h"
+#include "tools/curve_flags.h"
 
 namespace {
 
@@ -28,7 +29,7 @@ struct Args {
   double rotation_knot_spacing_s = 0.0;  // 0: knot_spacing_s
   double max_offset_s = vio::ImuCurveResidualOptions().max_offset_s;
   double offset_s = 0.0;  // applied to the ground truth before the fit
-  bool joint = false;     // --curve imu: fitted to ground truth and IMU
+  vio::FlightCurve curve = vio::FlightCurve::kGroundTruth;  // --curve
   vio::ImuCurveFitOptions imu_curve;
   bool help = false;
 };
@@ -79,27 +80,8 @@ Args ParseArgs(int argc, char** argv) {
       args.max_offset_s = line.Number<double>();
     } else if (flag == "--offset") {
       args.offset_s = line.Number<double>();
-    } else if (flag == "--curve") {
-      const std::string fit = line.Value();
-      if (fit != "ground-truth" && fit != "imu") {
-        throw std::invalid_argument(
-            "--curve expects ground-truth or imu (got '" + fit + "')");
-      }
-      args.joint = fit == "imu";
-    } else if (flag == "--fit-noise-scale") {
-      const double scale = line.Number<double>();
-      args.imu_curve.gyroscope_noise_scale = scale;
-      args.imu_curve.accelerometer_noise_scale = scale;
-    } else if (flag == "--fit-bias-walk-scale") {
-      args.imu_curve.bias_walk_scale = line.Number<double>();
-    } else if (flag == "--fit-bias-knot-spacing") {
-      args.imu_curve.bias_knot_spacing_s = line.Number<double>();
-    } else if (flag == "--fit-position-sigma") {
-      args.imu_curve.position_sigma_m = line.Number<double>();
-    } else if (flag == "--fit-rotation-sigma") {
-      args.imu_curve.rotation_sigma_rad = line.Number<double>();
-    } else if (flag == "--fit-knot-spacing") {
-      args.imu_curve.knot_spacing_s = line.Number<double>();
+    } else if (vio::ParseCurveFlag(line, &args.curve, &args.imu_curve)) {
+      // --curve, --fit-*: tools/curve_flags.h
     } else if (flag == "--help" || flag == "-h") {
       args.help = true;
     } else if (!flag.empty() && flag[0] != '-' && args.flight.empty()) {
@@ -170,7 +152,7 @@ int main(int argc, char** argv) {
     fit.rotation_knot_spacing_s = args.rotation_knot_spacing_s;
     std::vector<vio::ImuSample> imu = flight.imu;
     std::optional<vio::TrajectoryCurve> curve;
-    if (args.joint) {
+    if (args.curve == vio::FlightCurve::kGroundTruthAndImu) {
       const vio::ImuCurveFit joint = vio::FitCurveToImu(
           poses, flight.imu,
           flight.has_imu_noise ? flight.imu_noise : vio::ImuNoise(),

@@ -20,6 +20,7 @@
 #include "dataset/sim_trajectory.h"
 #include "dataset/trajectory_curve.h"
 #include "tools/command_line.h"
+#include "tools/curve_flags.h"
 #include "tools/sim_images.h"
 
 namespace {
@@ -142,30 +143,8 @@ Args ParseArgs(int argc, char** argv) {
         throw std::invalid_argument(
             "--rotation-knot-spacing expects seconds >= 0");
       }
-    } else if (flag == "--curve") {
-      const std::string fit = line.Value();
-      if (fit == "ground-truth") {
-        args.fit = vio::FlightCurve::kGroundTruth;
-      } else if (fit == "imu") {
-        args.fit = vio::FlightCurve::kGroundTruthAndImu;
-      } else {
-        throw std::invalid_argument(
-            "--curve expects ground-truth or imu (got '" + fit + "')");
-      }
-    } else if (flag == "--fit-noise-scale") {
-      const double scale = line.Number<double>();
-      args.imu_curve.gyroscope_noise_scale = scale;
-      args.imu_curve.accelerometer_noise_scale = scale;
-    } else if (flag == "--fit-bias-walk-scale") {
-      args.imu_curve.bias_walk_scale = line.Number<double>();
-    } else if (flag == "--fit-bias-knot-spacing") {
-      args.imu_curve.bias_knot_spacing_s = line.Number<double>();
-    } else if (flag == "--fit-position-sigma") {
-      args.imu_curve.position_sigma_m = line.Number<double>();
-    } else if (flag == "--fit-rotation-sigma") {
-      args.imu_curve.rotation_sigma_rad = line.Number<double>();
-    } else if (flag == "--fit-knot-spacing") {
-      args.imu_curve.knot_spacing_s = line.Number<double>();
+    } else if (vio::ParseCurveFlag(line, &args.fit, &args.imu_curve)) {
+      // --curve, --fit-*: tools/curve_flags.h
     } else if (flag == "--help" || flag == "-h") {
       args.help = true;
     } else {
