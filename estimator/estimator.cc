@@ -24,8 +24,6 @@ void Require(bool ok, const std::string& what, const std::string& message) {
   if (!ok) throw std::invalid_argument("Estimator: " + what + message);
 }
 
-int64_t SecondsToNs(double s) { return std::llround(s * 1e9); }
-
 bool Finite(const EstimatorOutput& o) {
   return o.p_w_b.allFinite() && o.q_w_b.coeffs().allFinite() &&
          o.v_w.allFinite() && o.b_a.allFinite() && o.b_g.allFinite();
@@ -187,7 +185,7 @@ EstimatorOutput Estimator::Step(const FeatureFrame& frame) {
     ++summary_.frames_out_of_order;
     return skipped;
   }
-  const int64_t t_imu_ns = frame.t_ns + SecondsToNs(window_.t_d);
+  const int64_t t_imu_ns = frame.t_ns + std::llround(window_.t_d * 1e9);
   // Not covered yet: wait for the IMU, unless it has gone silent (a gap,
   // tracked on vision alone once initialised).
   const bool covered = !imu_.empty() && imu_.back().t_ns >= t_imu_ns;

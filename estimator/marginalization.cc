@@ -15,7 +15,7 @@
 namespace vio {
 namespace {
 
-MarginalizationResult Failure(std::string message) {
+MarginalizationResult Refusal(std::string message) {
   MarginalizationResult result;
   result.status = MarginalizationStatus::kFailed;
   result.message = std::move(message);
@@ -168,17 +168,17 @@ bool MarginalizationOptions::Validate(std::string* message) const {
 MarginalizationResult Marginalize(const MarginalizationProblem& problem,
                                   const MarginalizationOptions& options) {
   std::string error;
-  if (!options.Validate(&error)) return Failure(error);
+  if (!options.Validate(&error)) return Refusal(error);
   error = CheckProblem(problem);
-  if (!error.empty()) return Failure(error);
+  if (!error.empty()) return Refusal(error);
 
   MarginalizationSystem system(problem);
-  if (system.kept_size() == 0) return Failure("no block is kept");
+  if (system.kept_size() == 0) return Refusal("no block is kept");
   const std::vector<const MarginalizationParameterBlock*>& kept = system.kept();
   for (const MarginalizationParameterBlock* p : kept) {
     if (p->manifold != nullptr &&
         dynamic_cast<const PoseManifold*>(p->manifold) == nullptr) {
-      return Failure("parameter block " +
+      return Refusal("parameter block " +
                      std::to_string(p - problem.parameter_blocks.data()) +
                      " is kept but has a manifold other than PoseManifold");
     }
