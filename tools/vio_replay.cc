@@ -8,10 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <exception>
 #include <filesystem>
-#include <opencv2/core/utility.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -22,7 +20,6 @@
 #include "config/imu_config.h"
 #include "config/visual_config.h"
 #include "dataset/euroc_csv_stream.h"
-#include "dataset/landmarks_io.h"
 #include "dataset/sim_folder.h"
 #include "estimator/estimator.h"
 #include "frontend/observation_builder.h"
@@ -30,6 +27,7 @@
 #include "tools/frame_pipeline.h"
 #include "tools/image_tracks.h"
 #include "tools/replay_health.h"
+#include "tools/vio_replay_images.h"
 #include "tools/vio_replay_report.h"
 
 namespace {
@@ -187,16 +185,6 @@ std::string SequenceFolder(const Args& args) {
   return cache;
 }
 
-// True when every used camera has images and none has features.csv: the
-// frontend tracks them.
-bool UsesImages(const EurocSequence& seq, int cameras_used) {
-  for (int c = 0; c < cameras_used; ++c) {
-    const EurocCamera& camera = seq.data.cameras[c];
-    if (camera.has_features || !camera.has_images) return false;
-  }
-  return true;
-}
-
 // The frontend options for tracking the images (announced on stdout).
 FrontendOptions ImageFrontendOptions(int cameras_used, const Config& config,
                                      const PipelineOptions& pipeline) {
@@ -217,91 +205,6 @@ FrontendOptions ImageFrontendOptions(int cameras_used, const Config& config,
                              std::to_string(pipeline.queue_frames) + " frames)")
                                 .c_str());
   return f;
-}
-
-// DIR/landmarks.csv: the world positions of the landmarks the run mapped
-// and their triangulation angles (Estimator::MappedLandmarks), for vio_plan
-// --replay. Written as the run goes: after each frame the landmarks the
-// estimator has finished (TakeFinishedLandmarks), at the end those still in
-// its map; so the rows come in the order the landmarks were finished (by
-// feature id within a frame), and none is kept in memory once written.
-class LandmarkStream {
- public:
-  explicit LandmarkStream(const std::string& dir)
-      : path_((fs::path(dir) / "landmarks.csv").string()), writer_(path_) {}
-
-  void Take(Estimator* estimator) {
-    for (const auto& [id, m] : estimator->TakeFinishedLandmarks()) {
-      writer_.Write({m.p_w, m.parallax_deg});
-    }
-  }
-
-  void Finish(Estimator* estimator) {
-    Take(estimator);
-    for (const auto& [id, m] : estimator->MappedLandmarks()) {
-      writer_.Write({m.p_w, m.parallax_deg});
-    }
-    writer_.Close();
-    std::printf("wrote %s (%lld landmarks)\n", path_.c_str(),
-                static_cast<long long>(writer_.rows()));
-  }
-
- private:
-  std::string path_;
-  LandmarksCsvWriter writer_;
-};
-
-// What an image replay produced: one output per frame; the frames with
-// their observations only when kept (--save-tracks), so that memory does
-// not grow with the sequence beyond the outputs.
-struct ImageReplay {
-  std::vector<EstimatorOutput> outputs;
-  std::vector<FeatureFrame> frames;  // empty without --save-tracks
-  double wall_s = 0.0;               // images, frontend and estimator [s]
-  double cpu_s = 0.0;                // process CPU over the same span [s]
-};
-
-// Reads, tracks and estimates the images frame by frame: reading, cam0
-// tracking and the stereo match on three threads ahead of the estimator
-// (EurocImageStream threaded, RunFramePipeline), or all on this one
-// (--sequential).
-// The estimator gets the same frames in the same order either way.
-// After each frame the finished landmarks go to `landmarks`.
-ImageReplay ReplayImages(const EurocSequence& seq,
-                         const FrontendOptions& frontend,
-                         const PipelineOptions& pipeline, bool keep_tracks,
-                         const ImuSource& imu, Estimator* estimator,
-                         LandmarkStream* landmarks,
-                         ImageTrackingSummary* summary,
-                         ObservationBuilderSummary* removed) {
-  // Pipelined, the stages are the parallelism: OpenCV's own pool (TBB here)
-  // splitting each LK call over more threads only oversubscribes the cores.
-  // One thread runs OpenCV's calls in the caller, with the same results (its
-  // parallel loops split independent points and rows).
-  if (!pipeline.sequential) cv::setNumThreads(1);
-  EurocImageStream stream(seq, frontend, true, !pipeline.sequential);
-  StreamingRunner runner(estimator, imu);
-  const EurocCamera& cam0 = seq.data.cameras[0];
-  Progress progress(static_cast<size_t>(cam0.image_count), cam0.first_image_ns);
-  ImageReplay replay;
-  const auto start = std::chrono::steady_clock::now();
-  const std::clock_t cpu_start = std::clock();
-  RunFramePipeline([&](FeatureFrame* frame) { return stream.Next(frame); },
-                   [&](FeatureFrame&& frame) {
-                     replay.outputs.push_back(runner.AddFrame(frame));
-                     landmarks->Take(estimator);
-                     progress.Update(replay.outputs.size() - 1, frame.t_ns);
-                     if (keep_tracks) replay.frames.push_back(std::move(frame));
-                   },
-                   pipeline);
-  replay.cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-  replay.wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count();
-  progress.Finish();
-  *summary = stream.summary();
-  *removed = stream.builder_summary();
-  return replay;
 }
 
 // Frames with xy and velocity, from each camera's features.csv.
@@ -494,27 +397,9 @@ int main(int argc, char** argv) {
                 config.estimator.estimate_time_offset ? "estimated" : "fixed");
     std::printf("  imu noise            %s\n", noise_description.c_str());
     if (images) {
-      const double n = static_cast<double>(image_summary.frames);
-      std::printf("%s", DescribeImageTracking(image_summary, used).c_str());
-      // Pipelined, the process CPU clock also counts the estimator's thread
-      // while the frontend runs: the frontend's CPU figure is sequential's.
-      if (args.pipeline.sequential) {
-        std::printf("  frontend    %.2f ms/frame CPU, ",
-                    n > 0 ? 1e3 * image_summary.track_cpu_seconds / n : 0.0);
-      } else {
-        std::printf("  frontend    ");
-      }
-      std::printf(
-          "%.2f ms wall (%.1f frames/s); image decoding %.2f ms/frame\n",
-          n > 0 ? 1e3 * image_summary.track_seconds / n : 0.0,
-          image_summary.track_seconds > 0 ? n / image_summary.track_seconds
-                                          : 0.0,
-          n > 0 ? 1e3 * image_summary.read_seconds / n : 0.0);
-      std::printf(
-          "  full replay %.1f frames/s wall, %.2f ms/frame process CPU "
-          "(images, frontend and estimator, %s)\n",
-          wall_s > 0 ? n / wall_s : 0.0, n > 0 ? 1e3 * cpu_s / n : 0.0,
-          args.pipeline.sequential ? "sequential" : "pipelined");
+      std::printf("%s", DescribeImageReplay(image_summary, used, wall_s, cpu_s,
+                                            args.pipeline.sequential)
+                            .c_str());
     }
     const std::string late =
         LateStartWarning(estimator.summary(), seq.data.start_ns);

@@ -21,6 +21,26 @@ double Seconds(std::chrono::steady_clock::duration d) {
 
 }  // namespace
 
+LandmarkStream::LandmarkStream(const std::string& dir)
+    : path_((std::filesystem::path(dir) / "landmarks.csv").string()),
+      writer_(path_) {}
+
+void LandmarkStream::Take(Estimator* estimator) {
+  for (const auto& [id, m] : estimator->TakeFinishedLandmarks()) {
+    writer_.Write({m.p_w, m.parallax_deg});
+  }
+}
+
+void LandmarkStream::Finish(Estimator* estimator) {
+  Take(estimator);
+  for (const auto& [id, m] : estimator->MappedLandmarks()) {
+    writer_.Write({m.p_w, m.parallax_deg});
+  }
+  writer_.Close();
+  std::printf("wrote %s (%lld landmarks)\n", path_.c_str(),
+              static_cast<long long>(writer_.rows()));
+}
+
 Progress::Progress(size_t total, int64_t first_ns)
     : total_(total),
       first_ns_(first_ns),

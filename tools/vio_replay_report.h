@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dataset/landmarks_io.h"
 #include "dataset/trajectory.h"
 #include "estimator/estimator.h"
 
@@ -31,6 +32,26 @@ class Progress {
   int last_decile_ = -1;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_;
+};
+
+// DIR/landmarks.csv: the world positions of the landmarks the run mapped
+// and their triangulation angles (Estimator::MappedLandmarks), for vio_plan
+// --replay. Written as the run goes: after each frame the landmarks the
+// estimator has finished (TakeFinishedLandmarks), at the end those still in
+// its map; so the rows come in the order the landmarks were finished (by
+// feature id within a frame), and none is kept in memory once written.
+class LandmarkStream {
+ public:
+  explicit LandmarkStream(const std::string& dir);
+
+  // The landmarks `estimator` finished since the last call.
+  void Take(Estimator* estimator);
+  // Those still in its map; closes the file and says how many rows it has.
+  void Finish(Estimator* estimator);
+
+ private:
+  std::string path_;
+  LandmarksCsvWriter writer_;
 };
 
 // Writes DIR/trajectory.tum and DIR/states.csv from the initialised outputs
