@@ -1,17 +1,11 @@
 #include "estimator/estimator.h"
 
-#include <time.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <set>
 #include <stdexcept>
 #include <utility>
 
 #include "estimator/image_velocity.h"
-#include "estimator/marginalization.h"
-#include "estimator/pose_covariance.h"
 #include "estimator/state_check.h"
 #include "estimator/state_prior.h"
 #include "estimator/window_problem.h"
@@ -27,18 +21,6 @@ void Require(bool ok, const std::string& what, const std::string& message) {
 bool Finite(const EstimatorOutput& o) {
   return o.p_w_b.allFinite() && o.q_w_b.coeffs().allFinite() &&
          o.v_w.allFinite() && o.b_a.allFinite() && o.b_g.allFinite();
-}
-
-double Seconds(std::chrono::steady_clock::duration d) {
-  return std::chrono::duration<double>(d).count();
-}
-
-// CPU time of the calling thread [s]: what a step costs, whatever else runs
-// on the machine.
-double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // The cameras' extrinsics for the initialisers (an identity when there is
@@ -435,148 +417,6 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
   *out = OutputOf(*window_.frames.back(), frame.t_ns);
   if (out->zero_velocity) ++summary_.zero_velocity_frames;
   return true;
-}
-
-void Estimator::Solve(WindowProblem* problem) {
-  summary_.landmarks_per_step.Add(problem->landmarks_used());
-  summary_.window_frames_per_step.Add(
-      static_cast<double>(window_.frames.size()));
-  summary_.residuals_per_step.Add(problem->num_residuals());
-  const double cpu_start = ThreadCpuSeconds();
-  const ceres::Solver::Summary solve =
-      problem->Solve(options_.solver, &solver_);
-  summary_.solver_cpu_time_s.Add(ThreadCpuSeconds() - cpu_start);
-  summary_.solver_time_s.Add(solve.total_time_in_seconds);
-  summary_.solver_jacobian_time_s += solve.jacobian_evaluation_time_in_seconds;
-  summary_.solver_residual_time_s += solve.residual_evaluation_time_in_seconds;
-  summary_.solver_linear_time_s += solve.linear_solver_time_in_seconds;
-  summary_.solver_preprocess_time_s += solve.preprocessor_time_in_seconds;
-  summary_.solver_iterations += static_cast<int64_t>(solve.iterations.size());
-  if (solve.termination_type == ceres::FAILURE) ++summary_.solver_failures;
-}
-
-Failure Estimator::CheckStep(const EstimatorOutput& predicted, int landmarks,
-                             int64_t t_ns) const {
-  const EstimatorOutput solved = OutputOf(*window_.frames.back(), t_ns);
-  StepCheck check;
-  // Landmarks are only demanded of a full window: a still start has none.
-  const bool full = window_.NumKeyframes() >= options_.window_size;
-  check.landmarks_in_problem =
-      full ? landmarks : options_.failure.min_tracked_landmarks;
-  check.p_before = predicted.p_w_b;
-  check.q_before = predicted.q_w_b;
-  check.p_after = solved.p_w_b;
-  check.q_after = solved.q_w_b;
-  check.v_after = solved.v_w;
-  check.b_a = solved.b_a;
-  check.b_g = solved.b_g;
-  return DetectFailure(check, options_.failure);
-}
-
-void Estimator::Slide(const WindowProblem& problem) {
-  const OutlierReport outliers =
-      problem.Outliers(options_.landmarks.outlier_threshold_px);
-  const WindowFrame& newest = *window_.frames.back();
-  const bool marginalize =
-      newest.keyframe && window_.NumKeyframes() > options_.window_size;
-  if (newest.keyframe) {
-    last_keyframe_id_ = newest.id;
-    ++summary_.keyframes;
-  }
-  // The marginalisation evaluates the problem's factors: before any
-  // landmark they refer to is removed.
-  if (marginalize) MarginalizeOldest(problem, outliers);
-  for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
-  for (int64_t id : outliers.behind) features_.RemoveLandmark(id);
-  summary_.landmarks_behind_removed +=
-      static_cast<int64_t>(outliers.behind.size());
-  for (const OutlierReport::BadSighting& b : outliers.sightings) {
-    features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
-  }
-  summary_.outlier_landmarks_removed +=
-      static_cast<int64_t>(outliers.landmarks.size());
-  summary_.outlier_sightings_removed +=
-      static_cast<int64_t>(outliers.sightings.size());
-  if (marginalize) {
-    landmark_map_.RecordAnchoredIn(features_, window_.frames.front()->id,
-                                   PoseFn());
-    features_.RemoveFrame(window_.frames.front()->id, PoseFn());
-    window_.frames.pop_front();
-    window_.frames.front()->imu.reset();
-  }
-  UpdateImuLinearization();
-}
-
-WindowProblemSettings Estimator::ProblemSettings() const {
-  WindowProblemSettings s;
-  for (int c = 0; c < window_.num_cameras; ++c) {
-    s.focal_px[c] = cameras_[c].focal_px;
-  }
-  s.visual = visual_;
-  s.gravity_magnitude = options_.gravity_magnitude;
-  s.estimate_extrinsics = options_.estimate_extrinsics;
-  s.estimate_time_offset = options_.estimate_time_offset;
-  s.max_landmarks = options_.landmarks.max_landmarks;
-  return s;
-}
-
-void Estimator::MarginalizeOldest(const WindowProblem& problem,
-                                  const OutlierReport& outliers) {
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu_start = ThreadCpuSeconds();
-  const MarginalizationProblem m = problem.OldestFrameMarginalization(outliers);
-  const MarginalizationResult result = Marginalize(m);
-  ++summary_.marginalizations;
-  if (result.ok()) {
-    prior_ = result.MakePrior();
-    prior_blocks_ = result.kept_parameter_blocks;
-    // The extrinsic and gap-bias priors were folded factors: now in prior_.
-    extrinsic_prior_.reset();
-    extrinsic_prior_blocks_.clear();
-    gap_bias_prior_.reset();
-    gap_bias_prior_blocks_.clear();
-  } else {
-    // No usable prior: a fresh one on the frame that becomes the oldest.
-    ++summary_.marginalization_failures;
-    if (std::count(gap_bias_prior_blocks_.begin(), gap_bias_prior_blocks_.end(),
-                   window_.frames[0]->speed_bias.data()) != 0) {
-      gap_bias_prior_.reset();
-      gap_bias_prior_blocks_.clear();
-    }
-    WindowFrame& next = *window_.frames[1];
-    prior_ = MakeStatePrior(next.pose.data(), next.speed_bias.data(),
-                            options_.state_prior,
-                            options_.state_prior.velocity_moving);
-    prior_blocks_ = {next.pose.data(), next.speed_bias.data()};
-    SetExtrinsicPrior();
-  }
-  summary_.marginalization_time_s.Add(
-      Seconds(std::chrono::steady_clock::now() - start));
-  summary_.marginalization_cpu_time_s.Add(ThreadCpuSeconds() - cpu_start);
-}
-
-bool Estimator::NewestPoseCovariance(Eigen::Matrix<double, 6, 6>* covariance) {
-  if (!initialized_ || window_.frames.empty()) return false;
-  WindowProblem problem(&window_, &features_, ProblemSettings());
-  if (prior_) problem.AddPrior(prior_.get(), prior_blocks_);
-  if (extrinsic_prior_) {
-    problem.AddPrior(extrinsic_prior_.get(), extrinsic_prior_blocks_);
-  }
-  if (!problem.AddImuFactors()) return false;
-  problem.AddVisualFactors();
-  return PoseCovariance(problem.CeresProblem().get(),
-                        window_.frames.back()->pose.data(), covariance);
-}
-
-void Estimator::UpdateImuLinearization() {
-  auto& frames = window_.frames;
-  for (size_t k = 1; k < frames.size(); ++k) {
-    const WindowFrame& i = *frames[k - 1];
-    if (!frames[k]->imu) continue;  // across an IMU gap
-    frames[k]->imu->UpdateBiasEstimate(
-        Eigen::Vector3d(i.speed_bias.data() + kSbBa),
-        Eigen::Vector3d(i.speed_bias.data() + kSbBg));
-  }
 }
 
 }  // namespace vio
