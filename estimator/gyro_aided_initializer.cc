@@ -238,31 +238,6 @@ InitAttempt GyroAidedInitializer::TryInitialize(
     if (!FitGyroAided(&problem, b_g, &solution)) {
       return failed(InitFailure::kScaleUncertain, 1.0, m.max_scale_uncertainty);
     }
-    // The refit can put a kept track's point behind one of its cameras
-    // (its RMS infinite, and with it the window's): such a track is an
-    // outlier of the refit as the ones above were of the fit, so it goes
-    // and the rest are fitted once more. Before, the attempt was refused
-    // for an infinite reprojection RMS (41 of the hand-held preset's
-    // gyro-aided refusals, docs/initialisation.md).
-    std::vector<GyroAidedTrack> in_front;
-    for (size_t t = 0; t < problem.tracks.size(); ++t) {
-      if (std::isfinite(solution.track_rms_px[t])) {
-        in_front.push_back(problem.tracks[t]);
-      }
-    }
-    if (in_front.size() < problem.tracks.size()) {
-      window->diagnostics.inliers = static_cast<int>(in_front.size());
-      if (static_cast<int>(in_front.size()) < min_tracks) {
-        return failed(InitFailure::kFewInliers,
-                      static_cast<double>(in_front.size()), min_tracks);
-      }
-      problem.tracks = std::move(in_front);
-      const Eigen::Vector3d b_g_refit = solution.b_g;
-      if (!FitGyroAided(&problem, b_g_refit, &solution)) {
-        return failed(InitFailure::kScaleUncertain, 1.0,
-                      m.max_scale_uncertainty);
-      }
-    }
   }
   window->diagnostics.reprojection_rms_px = solution.rms_px;
   if (!(solution.rms_px <= m.max_reprojection_rms_px)) {

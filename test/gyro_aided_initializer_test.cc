@@ -202,22 +202,6 @@ TEST(GyroAidedInitializer, PrecheckPassesAMovingCamera) {
   EXPECT_GE(w.diagnostics.parallax_px, Options(sim).init.mono.gyro_min_parallax_px);
 }
 
-// A track that the refit (after the outliers of the first fit are dropped)
-// puts behind one of its cameras is an outlier too: dropped, the rest fitted
-// once more. Here (1 px, seed 1, 1.5 s) the refit put 2 of 355 tracks
-// behind a camera; the attempt used to be refused for an infinite
-// reprojection RMS.
-TEST(GyroAidedInitializer, DropsTracksTheRefitPutsBehindACamera) {
-  SimulatorOptions o = HandHeld(true, 1);
-  o.motion.start_phase_s = 0.5;
-  const Simulation sim = Simulate(o);
-  InitialWindow w;
-  const InitAttempt a = TryStart(sim, Options(sim), 1.5, &w);
-  EXPECT_EQ(a.reason, InitFailure::kNone) << DescribeInitAttempt(a);
-  EXPECT_TRUE(std::isfinite(w.diagnostics.reprojection_rms_px));
-  EXPECT_LT(w.diagnostics.reprojection_rms_px, 2.5);
-}
-
 TEST(GyroAidedInitializer, RefusesTooFewTracks) {
   const Simulation sim = Simulate(HandHeld(true, 7));
   EstimatorOptions options = Options(sim);
