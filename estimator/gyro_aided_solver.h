@@ -97,9 +97,10 @@ bool FitGyroAided(GyroAidedProblem* problem, const Eigen::Vector3d& b_g_guess,
                   GyroAidedSolution* out);
 
 // FitGyroAided after its first step: the fit on the reprojection errors from
-// a bias already fitted to the rotations alone (gyro_bias_from_rotations.h),
-// so that a caller can judge that bias cheaply first (the initialiser's
-// parallax precheck). The same result as FitGyroAided for that bias.
+// a bias already fitted to the rotations alone (gyro_bias_from_rotations.h)
+// on these preintegrations' attitudes. The same result as FitGyroAided for
+// that bias. (The initialiser's precheck fits its bias on the rotation-only
+// attitudes, equal only to rounding, so it calls FitGyroAided instead.)
 bool FitGyroAidedFromRotationBias(GyroAidedProblem* problem,
                                   const Eigen::Vector3d& b_g_rotations,
                                   GyroAidedSolution* out);

@@ -14,12 +14,12 @@ struct PairBearings {
   std::vector<Eigen::Vector3d> u_i, u_j;  // unit bearings in the cameras
 };
 
-std::vector<PairBearings> PairsOf(const GyroAidedProblem& problem) {
+std::vector<PairBearings> PairsOf(const std::vector<GyroAidedTrack>& tracks,
+                                  int n) {
   constexpr int kPairStep = 4;
-  const int n = problem.NumFrames();
   std::vector<std::vector<std::pair<int, Eigen::Vector3d>>> by_frame(n);
-  for (size_t t = 0; t < problem.tracks.size(); ++t) {
-    for (const GyroAidedSighting& s : problem.tracks[t].sightings) {
+  for (size_t t = 0; t < tracks.size(); ++t) {
+    for (const GyroAidedSighting& s : tracks[t].sightings) {
       by_frame[s.frame].push_back(
           {static_cast<int>(t),
            Eigen::Vector3d(s.xy.x(), s.xy.y(), 1.0).normalized()});
@@ -43,15 +43,12 @@ std::vector<PairBearings> PairsOf(const GyroAidedProblem& problem) {
   return pairs;
 }
 
-double EpipolarCost(const GyroAidedProblem& problem,
+double EpipolarCost(const GyroAidedAttitudes& attitudes,
+                    const Eigen::Matrix3d& R_b_c,
                     const std::vector<PairBearings>& pairs,
                     const Eigen::Vector3d& b_g) {
-  GyroAidedSolution at;
-  at.b_g = b_g;
-  std::vector<Eigen::Matrix3d> R_v_c(problem.NumFrames());
-  for (int k = 0; k < problem.NumFrames(); ++k) {
-    R_v_c[k] = FrameState(problem, at, k).R_v_b * problem.T_b_c.linear();
-  }
+  const std::vector<Eigen::Matrix3d> R_v_c =
+      attitudes.CameraAttitudes(b_g, R_b_c);
   double cost = 0.0;
   for (const PairBearings& p : pairs) {
     const Eigen::Matrix3d R_ci_cj = R_v_c[p.i].transpose() * R_v_c[p.j];
@@ -71,13 +68,22 @@ double EpipolarCost(const GyroAidedProblem& problem,
 
 bool FitGyroBiasFromRotations(const GyroAidedProblem& problem,
                               Eigen::Vector3d* b_g) {
+  return FitGyroBiasFromRotations(GyroAidedAttitudes::Of(problem.from_first),
+                                  problem.tracks, problem.T_b_c.linear(), b_g);
+}
+
+bool FitGyroBiasFromRotations(const GyroAidedAttitudes& attitudes,
+                              const std::vector<GyroAidedTrack>& tracks,
+                              const Eigen::Matrix3d& R_b_c,
+                              Eigen::Vector3d* b_g) {
   constexpr int kIterations = 8;
   constexpr double kStep = 2e-4;     // [rad/s]
   constexpr double kMaxStep = 0.05;  // per iteration [rad/s]
-  const std::vector<PairBearings> pairs = PairsOf(problem);
+  const std::vector<PairBearings> pairs =
+      PairsOf(tracks, attitudes.NumFrames());
   if (pairs.size() < 3) return false;
   auto f = [&](const Eigen::Vector3d& b) {
-    return EpipolarCost(problem, pairs, b);
+    return EpipolarCost(attitudes, R_b_c, pairs, b);
   };
   double cost = f(*b_g);
   for (int it = 0; it < kIterations; ++it) {

@@ -15,13 +15,23 @@
 // start of the gyroscope-aided start's own fit (gyro_aided_solver.h).
 
 #include <Eigen/Core>
+#include <vector>
 
+#include "estimator/gyro_aided_attitudes.h"
 #include "estimator/gyro_aided_solver.h"
 
 namespace vio {
 
-// Refines *b_g (the start) over the problem's tracks and frames. False with
-// fewer than three frame pairs sharing eight features.
+// Refines *b_g (the start) over the tracks and the frames of `attitudes`
+// (the tracks' frame indices index them; R_b_c: camera 0). False with fewer
+// than three frame pairs sharing eight features.
+bool FitGyroBiasFromRotations(const GyroAidedAttitudes& attitudes,
+                              const std::vector<GyroAidedTrack>& tracks,
+                              const Eigen::Matrix3d& R_b_c,
+                              Eigen::Vector3d* b_g);
+
+// The same over a problem's tracks, with the attitudes of its
+// preintegrations.
 bool FitGyroBiasFromRotations(const GyroAidedProblem& problem,
                               Eigen::Vector3d* b_g);
 

@@ -43,8 +43,10 @@ void CheckStream(const std::vector<ImuSample>& samples) {
   }
 }
 
-// Linear interpolation between a and b (a.t_ns <= t_ns <= b.t_ns).
-ImuSample Interpolate(const ImuSample& a, const ImuSample& b, int64_t t_ns) {
+}  // namespace
+
+ImuSample InterpolateImuSample(const ImuSample& a, const ImuSample& b,
+                               int64_t t_ns) {
   if (t_ns == a.t_ns) return a;
   if (t_ns == b.t_ns) return b;
   const double s =
@@ -55,8 +57,6 @@ ImuSample Interpolate(const ImuSample& a, const ImuSample& b, int64_t t_ns) {
   out.gyr = (1.0 - s) * a.gyr + s * b.gyr;
   return out;
 }
-
-}  // namespace
 
 ImuDelta PreintegratedImu::Corrected(const Eigen::Vector3d& b_a,
                                      const Eigen::Vector3d& b_g) const {
@@ -110,9 +110,9 @@ std::vector<ImuSample> SliceImuInterval(int64_t t0_ns, int64_t t1_ns,
   }
   std::vector<ImuSample> out;
   out.reserve(hi - lo + 1);
-  out.push_back(Interpolate(samples[lo], samples[lo + 1], t0_ns));
+  out.push_back(InterpolateImuSample(samples[lo], samples[lo + 1], t0_ns));
   for (size_t k = lo + 1; k < hi; ++k) out.push_back(samples[k]);
-  out.push_back(Interpolate(samples[hi - 1], samples[hi], t1_ns));
+  out.push_back(InterpolateImuSample(samples[hi - 1], samples[hi], t1_ns));
   return out;
 }
 

@@ -145,6 +145,11 @@ std::vector<ImuSample> SliceImuInterval(int64_t t0_ns, int64_t t1_ns,
                                         const std::vector<ImuSample>& samples,
                                         double max_sample_gap);
 
+// Linear interpolation between samples a and b at t_ns (a.t_ns <= t_ns <=
+// b.t_ns): the ends SliceImuInterval makes; a or b itself at their stamps.
+ImuSample InterpolateImuSample(const ImuSample& a, const ImuSample& b,
+                               int64_t t_ns);
+
 }  // namespace vio
 
 #endif  // VIO_PREINTEGRATION_IMU_PREINTEGRATION_H_

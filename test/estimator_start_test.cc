@@ -100,19 +100,41 @@ TEST(EstimatorStart, MonoStartsInMotionWithTheTrueScaleAndGravity) {
 // old and its rotation-compensated parallax ~10-18 px. With the former
 // 20 px threshold this seed never started within 6 s (`too little
 // parallax` at every frame, docs/initialisation.md); the scale checks still
-// guard the start.
+// guard the start. The structure-from-motion start alone: the
+// gyroscope-aided fallback (on by default) starts this seed first, below.
 TEST(EstimatorStart, HandHeldMonoStartsWithinTwoSeconds) {
   SimulatorOptions o = Preset("handheld", 3.0);
   o.seed = 1000;  // init_benchmark's first hand-held trial
   const Simulation sim = Simulate(o);
-  const testing::SimReplay run =
-      testing::ReplaySimulation(sim, testing::OptionsFor(sim.options));
+  EstimatorOptions options = testing::OptionsFor(sim.options);
+  options.init.mono.gyro_aided = false;
+  const testing::SimReplay run = testing::ReplaySimulation(sim, options);
   ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
   const StartCheck c = CheckFirstStart(sim, run);
   EXPECT_EQ(c.method, InitMethod::kMono);
   EXPECT_LE(c.time_s, 2.0);
   // Measured: 1.70 s, scale -9.7 %, gravity 0.91 deg.
   EXPECT_LT(std::abs(c.scale_error), 0.15);
+  EXPECT_LT(c.gravity_deg, 1.5);
+  EXPECT_LT(c.gyro_bias, 0.01);
+}
+
+// With the default options the gyroscope-aided fallback starts the same
+// seed sooner, where the structure-from-motion start is refused (init_
+// benchmark's trial 1000: 1.50 s, scale -17.0 %, gravity 0.72 deg; its
+// scale error is within the 37.8 % the rule for turning it on compared
+// against, docs/initialisation.md).
+TEST(EstimatorStart, HandHeldDefaultStartsByTheGyroAidedFallback) {
+  SimulatorOptions o = Preset("handheld", 3.0);
+  o.seed = 1000;
+  const Simulation sim = Simulate(o);
+  const testing::SimReplay run =
+      testing::ReplaySimulation(sim, testing::OptionsFor(sim.options));
+  ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
+  const StartCheck c = CheckFirstStart(sim, run);
+  EXPECT_EQ(c.method, InitMethod::kGyroAided);
+  EXPECT_LE(c.time_s, 1.55);
+  EXPECT_LT(std::abs(c.scale_error), 0.25);
   EXPECT_LT(c.gravity_deg, 1.5);
   EXPECT_LT(c.gyro_bias, 0.01);
 }
