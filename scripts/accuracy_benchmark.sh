@@ -11,7 +11,7 @@
 #
 # usage: scripts/accuracy_benchmark.sh [--build DIR] [--work DIR] [--data DIR]
 #            [--only REGEX] [--mono-config FILE] [--stereo-config FILE]
-#            [--curve ground-truth|imu|both] [--seed N]
+#            [--curve imu|ground-truth|both] [--seeds LIST] [--seed N]
 #   --build DIR   the build folder holding tools/ (default build)
 #   --work DIR    simulated folders and replay logs (default
 #                 DIR_OF_BUILD/accuracy_benchmark); folders are made when
@@ -20,12 +20,16 @@
 #   --only REGEX  only the rows whose name matches (grep -E)
 #   --mono-config, --stereo-config  replay configurations (default
 #                 config/default.yaml, config/stereo.yaml)
-#   --curve       the recorded-IMU flights' curve (vio_sim --curve):
-#                 ground-truth (default; rows *_recorded_*), imu (fitted to
-#                 the ground truth and the recorded IMU together; rows
-#                 *_recorded_imucurve_*), or both
-#   --seed N      vio_sim's seed for the recorded flights (default: the
-#                 preset's, 1); N other than 1 adds _seedN to their rows
+#   --curve       the recorded-IMU flights' curve (vio_sim --curve): imu
+#                 (default; fitted to the ground truth and the recorded IMU
+#                 together; rows *_recorded_imucurve_*), ground-truth (rows
+#                 *_recorded_*), or both
+#   --seeds LIST  vio_sim's seeds for the recorded flights, comma-separated
+#                 (default 1,2,3); a seed other than 1 adds _seedN to its
+#                 rows and folders; with more than one seed each flight row
+#                 is followed by a *_mean row (ATE, RPE: the mean over the
+#                 seeds; resets: their sum)
+#   --seed N      the same as --seeds N
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build"
@@ -34,8 +38,8 @@ data="$root/../shared/data"
 only="."
 mono_config="$root/config/default.yaml"
 stereo_config="$root/config/stereo.yaml"
-curve="ground-truth"
-seed=""
+curve="imu"
+seeds="1,2,3"
 while [ $# -gt 0 ]; do
   case "$1" in
     --build) build="$2"; shift 2 ;;
@@ -45,8 +49,8 @@ while [ $# -gt 0 ]; do
     --mono-config) mono_config="$2"; shift 2 ;;
     --stereo-config) stereo_config="$2"; shift 2 ;;
     --curve) curve="$2"; shift 2 ;;
-    --seed) seed="$2"; shift 2 ;;
-    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
+    --seeds|--seed) seeds="$2"; shift 2 ;;
+    -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
     *) echo "error: unknown argument $1 (see --help)" >&2; exit 1 ;;
   esac
 done
@@ -55,6 +59,11 @@ case "$curve" in
   *) echo "error: --curve expects ground-truth, imu or both (got $curve)" >&2
      exit 1 ;;
 esac
+if ! [[ "$seeds" =~ ^[0-9]+(,[0-9]+)*$ ]]; then
+  echo "error: --seeds expects comma-separated whole numbers (got $seeds)" >&2
+  exit 1
+fi
+IFS=, read -r -a seed_list <<< "$seeds"
 [ -n "$work" ] || work="$build/accuracy_benchmark"
 sim="$build/tools/vio_sim"
 replay="$build/tools/vio_replay"
@@ -89,9 +98,11 @@ field() { grep -m1 "$2" "$1" | sed -E "$3" || true; }
 
 printf '| run | imu | cameras | ATE rmse [m] | RPE 1 m rmse [m] | resets | solver median / p95 [ms CPU] | real time |\n'
 printf '| --- | --- | --- | --- | --- | --- | --- | --- |\n'
-# run NAME FOLDER IMU CAMERAS CONFIG: replays and prints one table row.
+# run NAME FOLDER IMU CAMERAS CONFIG: replays and prints one table row; sets
+# last_ate, last_rpe and last_resets (empty when the row was not run or failed).
 run() {
   local name="$1" folder="$2" imu="$3" cameras="$4" config="$5"
+  last_ate="" last_rpe="" last_resets=""
   echo "$name" | grep -Eq "$only" || return 0
   local log="$work/runs/$name.log" noise=config
   [ "$imu" = synthetic ] && noise=sequence
@@ -112,6 +123,18 @@ run() {
   printf '| %s | %s | %s | %s | %s | %s | %s | %s |\n' "$name" "$imu" \
     "$cameras" "${ate:-n/a}" "${rpe:-n/a}" "${resets:-n/a}" \
     "${solver:-n/a}" "${rt:-n/a}"
+  last_ate="$ate" last_rpe="$rpe" last_resets="$resets"
+}
+
+# mean_row NAME IMU CAMERAS RUNS ATES RPES RESETS: the row of the mean over
+# RUNS seeds (ATES, RPES: space-separated figures; RESETS: their sum).
+mean_row() {
+  local name="$1" imu="$2" cameras="$3" runs="$4" ates="$5" rpes="$6"
+  local resets="$7"
+  mean() { awk '{ s = 0; for (i = 1; i <= NF; ++i) s += $i;
+                  printf "%.4f", s / NF }' <<< "$1"; }
+  printf '| %s | %s | %s | %s | %s | %s | mean of %s seeds | |\n' "$name" \
+    "$imu" "$cameras" "$(mean "$ates")" "$(mean "$rpes")" "$resets" "$runs"
 }
 
 for preset in "$root"/config/sim_*.yaml; do
@@ -134,17 +157,31 @@ for flight in "${flights[@]}"; do
   [ "$curve" = ground-truth ] || variants+=("recorded:imu:_imucurve")
   for variant in "${variants[@]}"; do
     IFS=: read -r imu fit suffix <<< "$variant"
-    name="${label}_${imu}${suffix}"
-    seed_args=()
-    if [ -n "$seed" ] && [ "$seed" != 1 ]; then
-      name="${name}_seed${seed}"
-      seed_args=(--seed "$seed")
-    fi
-    echo "${name}_mono ${name}_stereo" | grep -Eq "$only" || continue
-    # One stereo folder serves both replays (mono uses its cam0).
-    make_folder "$name" "$sim" --config "$root/config/sim_stereo.yaml" \
-      --flight "$folder" --imu "$imu" --curve "$fit" "${seed_args[@]}"
-    run "${name}_mono" "$work/$name" "$imu" mono "$mono_config"
-    run "${name}_stereo" "$work/$name" "$imu" stereo "$stereo_config"
+    base="${label}_${imu}${suffix}"
+    # One stereo folder per seed serves both replays (mono uses its cam0).
+    for cameras in mono stereo; do
+      config="$mono_config"
+      [ "$cameras" = stereo ] && config="$stereo_config"
+      ates="" rpes="" resets=0 runs=0
+      for seed in "${seed_list[@]}"; do
+        name="$base" seed_args=()
+        if [ "$seed" != 1 ]; then
+          name="${name}_seed${seed}"
+          seed_args=(--seed "$seed")
+        fi
+        echo "${name}_${cameras}" | grep -Eq "$only" || continue
+        make_folder "$name" "$sim" --config "$root/config/sim_stereo.yaml" \
+          --flight "$folder" --imu "$imu" --curve "$fit" "${seed_args[@]}"
+        run "${name}_${cameras}" "$work/$name" "$imu" "$cameras" "$config"
+        if [ -n "$last_ate" ] && [ -n "$last_rpe" ]; then
+          ates+=" $last_ate" rpes+=" $last_rpe"
+          resets=$((resets + ${last_resets:-0})) runs=$((runs + 1))
+        fi
+      done
+      if [ "${#seed_list[@]}" -gt 1 ] && [ "$runs" -gt 0 ]; then
+        mean_row "${base}_${cameras}_mean" "$imu" "$cameras" "$runs" \
+          "$ates" "$rpes" "$resets"
+      fi
+    done
   done
 done
