@@ -7,6 +7,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <set>
+#include <string>
 
 #include "dataset/features_csv.h"
 #include "test/testing/euroc_v1_01.h"
@@ -44,7 +45,10 @@ class BadImages : public ::testing::Test {
  protected:
   void SetUp() override {
     const fs::path src = fs::path(V101Sequence()) / "mav0";
-    root_ = fs::path(::testing::TempDir()) / "vio_bad_images";
+    // A folder per test: ctest runs the fixture's tests in parallel.
+    root_ = fs::path(::testing::TempDir()) /
+            (std::string("vio_bad_images_") +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root_);
     const fs::path mav0 = root_ / "mav0";
     fs::create_directories(mav0 / "imu0");
