@@ -17,7 +17,8 @@
 // claims (estimator/scale_uncertainty.h). With --ate
 // it also replays whole sequences in motion and from rest (the same motion
 // after a 2 s still start) and prints both ATEs; with --ate-from S also both
-// ATEs over the frames from S seconds on, aligned on those alone.
+// ATEs over the frames from S seconds on, aligned on those alone; --ate-runs N
+// replays min(N, --seeds) sequences per preset instead of 5.
 //
 // --diagnose prints, per frame until the start, the mono start's verdict and
 // the pairs it could take (init_diagnosis.h). --stereo-span and
@@ -33,6 +34,7 @@
 //                  [--gyro-max-change-sigmas K]
 //                  [--against-default] [--gyro-min-parallax PX]
 //                  [--attempts] [--stereo-span S] [--stereo-window S]
+//                  [--ate-from S] [--ate-runs N]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
@@ -88,6 +90,7 @@ struct Args {
   // With --ate: also the ATE of both runs over their frames from this many
   // seconds after the first frame on, aligned on those alone (< 0: not).
   double ate_from_s = -1.0;
+  int ate_runs = 5;  // --ate: runs per preset (seeds 2000 on)
 };
 
 EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
@@ -153,6 +156,8 @@ Args Parse(int argc, char** argv) {
       a.stereo_span_s = std::stod(value());
     } else if (s == "--stereo-window") {
       a.stereo_window_s = std::stod(value());
+    } else if (s == "--ate-runs") {
+      a.ate_runs = std::stoi(value());
     } else if (s == "--ate-from") {
       a.ate_from_s = std::stod(value());
     } else if (s == "--attempts") {
@@ -435,7 +440,7 @@ void StartFigures(const std::string& preset, const Args& args) {
 void AteFigures(const std::string& preset, const Args& args) {
   const SimulatorOptions base = LoadSimulatorOptions(
       std::string(VIO_SOURCE_DIR) + "/config/sim_" + preset + ".yaml");
-  const int runs = std::min(args.seeds, 5);
+  const int runs = std::min(args.seeds, args.ate_runs);
   Distribution moving, rest, moving_from, rest_from;
   for (int k = 0; k < runs; ++k) {
     SimulatorOptions o = base;
