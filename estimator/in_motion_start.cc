@@ -10,6 +10,10 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
 
+// A metric (stereo) trajectory's free |g| is refused only beyond this many of
+// its own standard deviations as well as beyond init.max_gravity_error.
+constexpr double kGravityNormSigmas = 3.0;
+
 InitAttempt Failed(InitFailure reason, double value, double limit) {
   InitAttempt a;
   a.reason = reason;
@@ -134,9 +138,18 @@ InitAttempt AlignAndBuild(const VisualTrajectory& visual,
                     init.mono.max_scale_uncertainty);
     }
   }
-  if (!(window->diagnostics.gravity_error <= init.max_gravity_error)) {
+  // Stereo: the PnP positions carry millimetres of noise, which over the
+  // 0.4 s of the stereo start move the free |g| by up to 1.4 m/s^2 with the
+  // trajectory sound (the joint adjustment then holds |g| at g); a |g| within
+  // 3 of its own sigmas is that noise, not a wrong start. Mono keeps the
+  // fixed limit: there |g| also checks the scale.
+  const double gravity_limit =
+      visual.metric ? std::max(init.max_gravity_error,
+                               kGravityNormSigmas * vgs.gravity_norm_sigma)
+                    : init.max_gravity_error;
+  if (!(window->diagnostics.gravity_error <= gravity_limit)) {
     return Failed(InitFailure::kGravityMagnitude, vgs.g_v.norm() - g,
-                  init.max_gravity_error);
+                  gravity_limit);
   }
   if (!RefineGravity(aligned, *intervals, t_b_c, zero, g, alignment, &vgs) ||
       !(vgs.scale > 0.0)) {

@@ -6,9 +6,11 @@
 //   1. the oldest frame's stereo pairs give metric points (estimator/
 //      triangulation.h with the calibrated T_c0_c1);
 //   2. every later frame is placed by PnP on them (structure_from_motion.h,
-//      PlaceCameraByPnp), newest last;
+//      PlaceCameraByPnp), newest last, and adds its own stereo pairs not
+//      seen before to the points the next frames are placed on;
 //   3. the metric trajectory is aligned with the IMU: gyroscope bias,
-//      velocities and gravity, the scale held at 1 (in_motion_start.h).
+//      velocities and gravity, the scale held at 1 (in_motion_start.h; its
+//      free |g| is checked against g within 3 of its own sigmas).
 // No stillness and no IMU excitation are needed: the scale comes from the
 // stereo baseline, and gravity shows in the specific force whatever the
 // motion. The joint visual-inertial adjustment that completes the start runs

@@ -91,10 +91,11 @@ void BuildSystem(const std::vector<AlignmentFrame>& frames,
 // seconds and visual units); fills x, the RMS of the position rows (unweighted
 // back to metres) and the standard deviation of column `col` from
 // sigma^2 (A^T A)^-1, sigma^2 = |A x - b|^2 / (rows - unknowns) (col < 0: not
-// wanted).
+// wanted), and with `covariance` that whole matrix in x's units.
 bool SolveScaled(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
                  int position_rows, double position_sigma, int col,
-                 Eigen::VectorXd* x, double* residual_rms, double* sigma_col) {
+                 Eigen::VectorXd* x, double* residual_rms, double* sigma_col,
+                 Eigen::MatrixXd* covariance = nullptr) {
   const Eigen::VectorXd norms = A.colwise().norm();
   if ((norms.array() <= 0.0).any()) return false;
   const Eigen::MatrixXd As = A * norms.cwiseInverse().asDiagonal();
@@ -112,6 +113,16 @@ bool SolveScaled(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
     e[col] = 1.0;
     const double cov = (As.transpose() * As).ldlt().solve(e)[col];
     *sigma_col = std::sqrt(std::max(0.0, sigma2 * cov)) / norms[col];
+  }
+  if (covariance != nullptr) {
+    const Eigen::Index dof = A.rows() - A.cols();
+    const double sigma2 = dof > 0 ? r.squaredNorm() / dof : 0.0;
+    const Eigen::MatrixXd inverse =
+        (As.transpose() * As)
+            .ldlt()
+            .solve(Eigen::MatrixXd::Identity(As.cols(), As.cols()));
+    *covariance = sigma2 * norms.cwiseInverse().asDiagonal() * inverse *
+                  norms.cwiseInverse().asDiagonal();
   }
   return x->allFinite();
 }
@@ -200,12 +211,18 @@ bool SolveVelocityGravityScale(const std::vector<AlignmentFrame>& frames,
   Eigen::VectorXd b, x;
   BuildSystem(frames, from_first, t_b_c, b_a, options, &A, &b);
   double sigma = 0.0;
+  Eigen::MatrixXd covariance;
   if (!SolveScaled(A, b, 3 * (n - 1), options.position_sigma_m,
-                   l.scale ? l.S() : -1, &x, &result->residual_rms, &sigma)) {
+                   l.scale ? l.S() : -1, &x, &result->residual_rms, &sigma,
+                   &covariance)) {
     return false;
   }
   Unpack(x, x.segment<3>(l.G()), frames, from_first, b_a, l, result);
   result->scale_sigma = l.scale ? sigma : 0.0;
+  // |g| = g_hat^T g to first order, so its variance is g_hat^T Cov_g g_hat.
+  const Eigen::Vector3d g_hat = result->g_v.normalized();
+  result->gravity_norm_sigma = std::sqrt(
+      std::max(0.0, g_hat.dot(covariance.block<3, 3>(l.G(), l.G()) * g_hat)));
   return true;
 }
 

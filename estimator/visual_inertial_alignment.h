@@ -76,6 +76,9 @@ struct VelocityGravityScale {
   double scale_sigma = 0.0;
   Eigen::Vector3d b_a = Eigen::Vector3d::Zero();  // estimated [m/s^2]
   double residual_rms = 0.0;  // of the position equations [m]
+  // Standard deviation of |g_v| from the same covariance, g_hat^T Cov_g g_hat
+  // (SolveVelocityGravityScale only; RefineGravity holds |g|) [m/s^2].
+  double gravity_norm_sigma = 0.0;
 };
 
 // Solves the system above for v_0, gravity (free magnitude), the scale (with

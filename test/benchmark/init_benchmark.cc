@@ -9,15 +9,21 @@
 //   - the gravity direction error: the angle between the estimated and the
 //     true world z seen from the newest frame [deg],
 //   - the gyroscope-bias error |b_g - b_g true| at the newest frame [rad/s],
-// with the share of starts within the target time, and the same scale error
-// for the linear alignment alone (before the joint adjustment); --verbose
+// with the share of starts within the target time, the same scale error
+// for the linear alignment alone (before the joint adjustment), and the
+// running estimate's gravity direction error at fixed times after the first
+// frame (kLaterTimes: what the window makes of the start's tilt); --verbose
 // also prints per trial the scale's relative std the joint adjustment
 // claims (estimator/scale_uncertainty.h). With --ate
 // it also replays whole sequences in motion and from rest (the same motion
-// after a 2 s still start) and prints both ATEs.
+// after a 2 s still start) and prints both ATEs; with --ate-from S also both
+// ATEs over the frames from S seconds on, aligned on those alone; --ate-runs N
+// replays min(N, --seeds) sequences per preset instead of 5.
 //
 // --diagnose prints, per frame until the start, the mono start's verdict and
-// the pairs it could take (init_diagnosis.h). --min-parallax,
+// the pairs it could take (init_diagnosis.h). --stereo-span and
+// --stereo-window override init.stereo's min_span_s and window_s;
+// --min-parallax,
 // --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
 // init.mono's options, to measure them.
 //
@@ -27,7 +33,8 @@
 //                  [--min-correspondences N] [--gyro-aided 0|1]
 //                  [--gyro-max-change-sigmas K]
 //                  [--against-default] [--gyro-min-parallax PX]
-//                  [--attempts]
+//                  [--attempts] [--stereo-span S] [--stereo-window S]
+//                  [--ate-from S] [--ate-runs N]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
@@ -77,6 +84,13 @@ struct Args {
   // --verbose: also every refused attempt of the trial (method, time,
   // reason, value), to measure a check's values.
   bool attempts = false;
+  // init.stereo.min_span_s and window_s (< 0: the defaults).
+  double stereo_span_s = -1.0;
+  double stereo_window_s = -1.0;
+  // With --ate: also the ATE of both runs over their frames from this many
+  // seconds after the first frame on, aligned on those alone (< 0: not).
+  double ate_from_s = -1.0;
+  int ate_runs = 5;  // --ate: runs per preset (seeds 2000 on)
 };
 
 EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
@@ -98,6 +112,10 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   }
   if (args.gyro_min_parallax_px >= 0.0) {
     o.init.mono.gyro_min_parallax_px = args.gyro_min_parallax_px;
+  }
+  if (args.stereo_span_s > 0.0) o.init.stereo.min_span_s = args.stereo_span_s;
+  if (args.stereo_window_s > 0.0) {
+    o.init.stereo.window_s = args.stereo_window_s;
   }
   return o;
 }
@@ -134,6 +152,14 @@ Args Parse(int argc, char** argv) {
       a.gyro_max_change_sigmas = std::stod(value());
     } else if (s == "--gyro-min-parallax") {
       a.gyro_min_parallax_px = std::stod(value());
+    } else if (s == "--stereo-span") {
+      a.stereo_span_s = std::stod(value());
+    } else if (s == "--stereo-window") {
+      a.stereo_window_s = std::stod(value());
+    } else if (s == "--ate-runs") {
+      a.ate_runs = std::stoi(value());
+    } else if (s == "--ate-from") {
+      a.ate_from_s = std::stod(value());
     } else if (s == "--attempts") {
       a.attempts = true;
     } else if (s == "--diagnose") {
@@ -234,14 +260,30 @@ struct Trial {
   double alignment_scale_error = 0.0;  // the linear alignment's
   double gravity_deg = 0.0;
   double gyro_bias = 0.0;
-  double scale_sigma = -1.0;  // predicted by the joint adjustment
-  double own_sigma = -1.0;    // the initialiser's own (before it)
-  double accel_bias = 0.0;    // |b_a - b_a true| at the newest frame
+  double scale_sigma = -1.0;       // predicted by the joint adjustment
+  double own_sigma = -1.0;         // the initialiser's own (before it)
+  double accel_bias = 0.0;         // |b_a - b_a true| at the newest frame
   double initial_gyro_bias = 0.0;  // the initialiser's, before the adjustment
   double parallax_px = 0.0;        // the start's own parallax measure
   InitMethod method = InitMethod::kAuto;
   std::string failures;
+  // The running estimate's gravity direction error at kLaterTimes after the
+  // first frame [deg] (< 0: not yet started then).
+  std::vector<double> later_gravity_deg;
 };
+
+// When the running estimate's tilt is measured, after the first frame [s].
+const std::vector<double> kLaterTimes = {0.4, 0.5, 0.6, 0.7, 0.8, 0.9,
+                                         1.0, 1.2, 1.5, 2.0, 3.0};
+
+// The angle between the estimated and the true world z seen from the body.
+double GravityErrorDeg(const Eigen::Quaterniond& q_est,
+                       const Eigen::Quaterniond& q_true) {
+  const Eigen::Vector3d z_est = q_est.conjugate() * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d z_true = q_true.conjugate() * Eigen::Vector3d::UnitZ();
+  return std::atan2(z_est.cross(z_true).norm(), z_est.dot(z_true)) * 180.0 /
+         M_PI;
+}
 
 Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   const Simulation sim = Simulate(sim_options);
@@ -264,6 +306,9 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
     }
   }
   Trial t;
+  t.later_gravity_deg.assign(kLaterTimes.size(), -1.0);
+  const int64_t t_first = prepared.frames.front().t_ns;
+  size_t later = 0;  // the next of kLaterTimes to measure
   for (const FeatureFrame& frame : prepared.frames) {
     while (next_imu < sim.imu.size()) {
       const ImuSample& s = sim.imu[next_imu++];
@@ -271,12 +316,23 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
       if (s.t_ns >= frame.t_ns) break;
     }
     const size_t attempts_before = estimator.summary().init_attempts.size();
-    estimator.AddFrame(frame);
+    const EstimatorOutput out = estimator.AddFrame(frame);
     if (args.diagnose) {
       Diagnose(sim, prepared, options, frame, attempts_before,
                estimator.summary(), &buffer);
     }
-    if (!estimator.summary().starts.empty()) break;
+    // Past the start, only to measure the running estimate's tilt.
+    const double age_s = 1e-9 * static_cast<double>(frame.t_ns - t_first);
+    while (later < kLaterTimes.size() && age_s >= kLaterTimes[later] - 1e-6) {
+      if (out.initialized) {
+        t.later_gravity_deg[later] =
+            GravityErrorDeg(out.q_w_b, TruthAt(sim, out.t_ns).q_w_b);
+      }
+      ++later;
+    }
+    if (!estimator.summary().starts.empty() && later >= kLaterTimes.size()) {
+      break;
+    }
   }
   const EstimatorSummary& summary = estimator.summary();
   if (summary.starts.empty()) {
@@ -299,12 +355,7 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
       ratio / (1.0 + start.diagnostics.refine_scale_change) - 1.0;
   const InitialFrame& newest = start.window.back();
   const StampedState& gt = TruthAt(sim, newest.t_imu_ns);
-  const Eigen::Vector3d z_est =
-      newest.q_w_b.conjugate() * Eigen::Vector3d::UnitZ();
-  const Eigen::Vector3d z_true =
-      gt.q_w_b.conjugate() * Eigen::Vector3d::UnitZ();
-  t.gravity_deg =
-      std::atan2(z_est.cross(z_true).norm(), z_est.dot(z_true)) * 180.0 / M_PI;
+  t.gravity_deg = GravityErrorDeg(newest.q_w_b, gt.q_w_b);
   t.gyro_bias = (newest.b_g - gt.b_g).norm();
   t.scale_sigma = start.diagnostics.refined_scale_sigma;
   t.own_sigma = start.diagnostics.scale_uncertainty;
@@ -323,6 +374,8 @@ void StartFigures(const std::string& preset, const Args& args) {
       std::string(VIO_SOURCE_DIR) + "/config/sim_" + preset + ".yaml");
   const double target_s = base.camera.stereo ? 0.5 : 2.0;
   Distribution time, scale, align, gravity, bias;
+  std::vector<Distribution> later(kLaterTimes.size());
+  std::vector<int> later_missing(kLaterTimes.size(), 0);
   int started = 0, within = 0;
   for (int k = 0; k < args.seeds; ++k) {
     SimulatorOptions o = base;
@@ -356,6 +409,13 @@ void StartFigures(const std::string& preset, const Args& args) {
     align.Add(std::abs(t.alignment_scale_error));
     gravity.Add(t.gravity_deg);
     bias.Add(t.gyro_bias);
+    for (size_t i = 0; i < kLaterTimes.size(); ++i) {
+      if (t.later_gravity_deg[i] >= 0.0) {
+        later[i].Add(t.later_gravity_deg[i]);
+      } else {
+        ++later_missing[i];
+      }
+    }
   }
   std::printf("%s: %d trials (seeds x start phases), %.1f s each\n",
               preset.c_str(), args.seeds, args.seconds);
@@ -367,28 +427,51 @@ void StartFigures(const std::string& preset, const Args& args) {
   std::printf("    alignment alone %s\n", align.Describe(100.0, "%").c_str());
   std::printf("  gravity error     %s\n", gravity.Describe(1.0, "deg").c_str());
   std::printf("  gyro bias error   %s\n", bias.Describe(1.0, "rad/s").c_str());
+  for (size_t i = 0; i < kLaterTimes.size(); ++i) {
+    if (later[i].values.empty()) continue;  // none started by then
+    std::printf(
+        "  gravity error of the estimate %.1f s after the first frame "
+        "%s (%d not started by then)\n",
+        kLaterTimes[i], later[i].Describe(1.0, "deg").c_str(),
+        later_missing[i]);
+  }
 }
 
 void AteFigures(const std::string& preset, const Args& args) {
   const SimulatorOptions base = LoadSimulatorOptions(
       std::string(VIO_SOURCE_DIR) + "/config/sim_" + preset + ".yaml");
-  const int runs = std::min(args.seeds, 5);
-  Distribution moving, rest;
+  const int runs = std::min(args.seeds, args.ate_runs);
+  Distribution moving, rest, moving_from, rest_from;
   for (int k = 0; k < runs; ++k) {
     SimulatorOptions o = base;
     o.seed = static_cast<uint32_t>(2000 + k);
     o.motion.start_phase_s =
         base.motion.start_phase_s + k * base.motion.lap_period_s / runs;
+    const Simulation sim_a = Simulate(o);
     const testing::SimReplay a =
-        testing::ReplaySimulation(Simulate(o), OptionsOf(o, args));
+        testing::ReplaySimulation(sim_a, OptionsOf(o, args));
     // The same motion from rest: a 2 s still start blending into it.
     SimulatorOptions r = o;
     r.motion.still_duration_s = 2.0;
     r.motion.blend_duration_s = 2.0;
+    const Simulation sim_b = Simulate(r);
     const testing::SimReplay b =
-        testing::ReplaySimulation(Simulate(r), OptionsOf(r, args));
+        testing::ReplaySimulation(sim_b, OptionsOf(r, args));
     moving.Add(a.ate_rmse_m);
     rest.Add(b.ate_rmse_m);
+    if (args.ate_from_s >= 0.0) {
+      const int64_t from_ns = std::llround(args.ate_from_s * 1e9);
+      double ate_a = -1.0, ate_b = -1.0;
+      testing::AteFrom(sim_a, a.outputs,
+                       sim_a.ground_truth.front().t_ns + from_ns, &ate_a);
+      testing::AteFrom(sim_b, b.outputs,
+                       sim_b.ground_truth.front().t_ns + from_ns, &ate_b);
+      moving_from.Add(ate_a);
+      rest_from.Add(ate_b);
+      std::printf(
+          "    from %.1f s on: ATE in motion %.4f m, from rest %.4f m\n",
+          args.ate_from_s, ate_a, ate_b);
+    }
     if (args.against_default) {
       const Simulation sim = Simulate(o);
       const testing::SimReplay d =
@@ -422,6 +505,11 @@ void AteFigures(const std::string& preset, const Args& args) {
               preset.c_str(), runs, base.duration_s,
               moving.Describe(1.0, "m").c_str(),
               rest.Describe(1.0, "m").c_str());
+  if (args.ate_from_s >= 0.0) {
+    std::printf("  from %.1f s on: in motion %s; from rest %s\n",
+                args.ate_from_s, moving_from.Describe(1.0, "m").c_str(),
+                rest_from.Describe(1.0, "m").c_str());
+  }
 }
 
 }  // namespace
