@@ -51,129 +51,13 @@
 #include "dataset/simulator.h"
 #include "estimator/estimator.h"
 #include "estimator/sequence_runner.h"
+#include "test/benchmark/init_benchmark_args.h"
 #include "test/benchmark/init_diagnosis.h"
 #include "test/testing/sim_replay.h"
 #include "test/testing/spread.h"
 
 namespace vio {
 namespace {
-
-struct Args {
-  std::vector<std::string> presets;
-  int seeds = 20;
-  double seconds = 6.0;  // simulated per start trial [s]
-  bool ate = false;
-  // With --ate: also replay in motion with the preset's default options and
-  // compare on the frames both runs estimate (from the later first start).
-  bool against_default = false;
-  bool verbose = false;
-  bool diagnose = false;  // per attempt: pairs, parallax, truth
-  // init.mono.long_window_s and max_refined_scale_uncertainty (< 0: the
-  // defaults), to measure the wait for the scale.
-  double long_window_s = -1.0;
-  double max_scale_sigma = -1.0;
-  // init.mono.min_parallax_px and min_correspondences (< 0: the defaults).
-  double min_parallax_px = -1.0;
-  int min_correspondences = -1;
-  // init.mono.gyro_aided: 0 off, 1 on, < 0 the default.
-  int gyro_aided = -1;
-  // init.mono.gyro_max_refine_change_sigmas (< 0: the default).
-  double gyro_max_change_sigmas = -1.0;
-  // init.mono.gyro_min_parallax_px (< 0: the default).
-  double gyro_min_parallax_px = -1.0;
-  // --verbose: also every refused attempt of the trial (method, time,
-  // reason, value), to measure a check's values.
-  bool attempts = false;
-  // init.stereo.min_span_s and window_s (< 0: the defaults).
-  double stereo_span_s = -1.0;
-  double stereo_window_s = -1.0;
-  // With --ate: also the ATE of both runs over their frames from this many
-  // seconds after the first frame on, aligned on those alone (< 0: not).
-  double ate_from_s = -1.0;
-  int ate_runs = 5;  // --ate: runs per preset (seeds 2000 on)
-};
-
-EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
-                           const Args& args) {
-  EstimatorOptions o = testing::OptionsFor(simulation);
-  if (args.long_window_s > 0.0) o.init.mono.long_window_s = args.long_window_s;
-  if (args.max_scale_sigma > 0.0) {
-    o.init.mono.max_refined_scale_uncertainty = args.max_scale_sigma;
-  }
-  if (args.min_parallax_px >= 0.0) {
-    o.init.mono.min_parallax_px = args.min_parallax_px;
-  }
-  if (args.min_correspondences > 0) {
-    o.init.mono.min_correspondences = args.min_correspondences;
-  }
-  if (args.gyro_aided >= 0) o.init.mono.gyro_aided = args.gyro_aided > 0;
-  if (args.gyro_max_change_sigmas > 0.0) {
-    o.init.mono.gyro_max_refine_change_sigmas = args.gyro_max_change_sigmas;
-  }
-  if (args.gyro_min_parallax_px >= 0.0) {
-    o.init.mono.gyro_min_parallax_px = args.gyro_min_parallax_px;
-  }
-  if (args.stereo_span_s > 0.0) o.init.stereo.min_span_s = args.stereo_span_s;
-  if (args.stereo_window_s > 0.0) {
-    o.init.stereo.window_s = args.stereo_window_s;
-  }
-  return o;
-}
-
-Args Parse(int argc, char** argv) {
-  Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string s = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(s + " needs a value");
-      return argv[++i];
-    };
-    if (s == "--preset") {
-      a.presets.push_back(value());
-    } else if (s == "--seeds") {
-      a.seeds = std::stoi(value());
-    } else if (s == "--seconds") {
-      a.seconds = std::stod(value());
-    } else if (s == "--ate") {
-      a.ate = true;
-    } else if (s == "--against-default") {
-      a.against_default = true;
-    } else if (s == "--long-window") {
-      a.long_window_s = std::stod(value());
-    } else if (s == "--max-scale-sigma") {
-      a.max_scale_sigma = std::stod(value());
-    } else if (s == "--min-parallax") {
-      a.min_parallax_px = std::stod(value());
-    } else if (s == "--min-correspondences") {
-      a.min_correspondences = std::stoi(value());
-    } else if (s == "--gyro-aided") {
-      a.gyro_aided = std::stoi(value());
-    } else if (s == "--gyro-max-change-sigmas") {
-      a.gyro_max_change_sigmas = std::stod(value());
-    } else if (s == "--gyro-min-parallax") {
-      a.gyro_min_parallax_px = std::stod(value());
-    } else if (s == "--stereo-span") {
-      a.stereo_span_s = std::stod(value());
-    } else if (s == "--stereo-window") {
-      a.stereo_window_s = std::stod(value());
-    } else if (s == "--ate-runs") {
-      a.ate_runs = std::stoi(value());
-    } else if (s == "--ate-from") {
-      a.ate_from_s = std::stod(value());
-    } else if (s == "--attempts") {
-      a.attempts = true;
-    } else if (s == "--diagnose") {
-      a.diagnose = true;
-    } else if (s == "--verbose") {
-      a.verbose = true;
-    } else {
-      throw std::invalid_argument("unknown option " + s);
-    }
-  }
-  if (a.presets.empty())
-    a.presets = {"motion_mono", "motion_stereo", "handheld"};
-  return a;
-}
 
 struct Distribution {
   std::vector<double> values;

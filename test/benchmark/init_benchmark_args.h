@@ -1,0 +1,61 @@
+#ifndef VIO_TEST_BENCHMARK_INIT_BENCHMARK_ARGS_H_
+#define VIO_TEST_BENCHMARK_INIT_BENCHMARK_ARGS_H_
+
+// init_benchmark's command line (the options are listed in
+// init_benchmark.cc) and the estimator options it makes of them.
+
+#include <string>
+#include <vector>
+
+#include "dataset/simulator.h"
+#include "estimator/estimator_options.h"
+
+namespace vio {
+
+struct Args {
+  std::vector<std::string> presets;
+  int seeds = 20;
+  double seconds = 6.0;  // simulated per start trial [s]
+  bool ate = false;
+  // With --ate: also replay in motion with the preset's default options and
+  // compare on the frames both runs estimate (from the later first start).
+  bool against_default = false;
+  bool verbose = false;
+  bool diagnose = false;  // per attempt: pairs, parallax, truth
+  // init.mono.long_window_s and max_refined_scale_uncertainty (< 0: the
+  // defaults), to measure the wait for the scale.
+  double long_window_s = -1.0;
+  double max_scale_sigma = -1.0;
+  // init.mono.min_parallax_px and min_correspondences (< 0: the defaults).
+  double min_parallax_px = -1.0;
+  int min_correspondences = -1;
+  // init.mono.gyro_aided: 0 off, 1 on, < 0 the default.
+  int gyro_aided = -1;
+  // init.mono.gyro_max_refine_change_sigmas (< 0: the default).
+  double gyro_max_change_sigmas = -1.0;
+  // init.mono.gyro_min_parallax_px (< 0: the default).
+  double gyro_min_parallax_px = -1.0;
+  // --verbose: also every refused attempt of the trial (method, time,
+  // reason, value), to measure a check's values.
+  bool attempts = false;
+  // init.stereo.min_span_s and window_s (< 0: the defaults).
+  double stereo_span_s = -1.0;
+  double stereo_window_s = -1.0;
+  // With --ate: also the ATE of both runs over their frames from this many
+  // seconds after the first frame on, aligned on those alone (< 0: not).
+  double ate_from_s = -1.0;
+  int ate_runs = 5;  // --ate: runs per preset (seeds 2000 on)
+};
+
+// The estimator options for replaying `simulation`
+// (testing::OptionsFor) with the overrides of `args`.
+EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
+                           const Args& args);
+
+// Parses the command line; throws std::invalid_argument on an unknown
+// option or a missing value.
+Args Parse(int argc, char** argv);
+
+}  // namespace vio
+
+#endif  // VIO_TEST_BENCHMARK_INIT_BENCHMARK_ARGS_H_
