@@ -495,13 +495,6 @@ bool FitGyroAided(GyroAidedProblem* problem, const Eigen::Vector3d& b_g_guess,
   // errors, started from zero, was measured to stop in a wrong minimum).
   Eigen::Vector3d b_g = b_g_guess;
   if (!FitGyroBiasFromRotations(*problem, &b_g)) return false;
-  return FitGyroAidedFromRotationBias(problem, b_g, out);
-}
-
-bool FitGyroAidedFromRotationBias(GyroAidedProblem* problem,
-                                  const Eigen::Vector3d& b_g_rotations,
-                                  GyroAidedSolution* out) {
-  Eigen::Vector3d b_g = b_g_rotations;
   GyroAidedSolution solution;
   const GyroAidedSolution* weights = nullptr;
   // Two passes of the fit on the reprojection errors, the first with unit

@@ -96,15 +96,6 @@ bool SolveAtBias(const GyroAidedProblem& problem, const Eigen::Vector3d& b_g,
 bool FitGyroAided(GyroAidedProblem* problem, const Eigen::Vector3d& b_g_guess,
                   GyroAidedSolution* out);
 
-// FitGyroAided after its first step: the fit on the reprojection errors from
-// a bias already fitted to the rotations alone (gyro_bias_from_rotations.h)
-// on these preintegrations' attitudes. The same result as FitGyroAided for
-// that bias. (The initialiser's precheck fits its bias on the rotation-only
-// attitudes, equal only to rounding, so it calls FitGyroAided instead.)
-bool FitGyroAidedFromRotationBias(GyroAidedProblem* problem,
-                                  const Eigen::Vector3d& b_g_rotations,
-                                  GyroAidedSolution* out);
-
 }  // namespace vio
 
 #endif  // VIO_ESTIMATOR_GYRO_AIDED_SOLVER_H_
