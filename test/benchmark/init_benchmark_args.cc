@@ -73,7 +73,15 @@ Args Parse(int argc, char** argv) {
     } else if (s == "--ate-runs") {
       a.ate_runs = std::stoi(value());
     } else if (s == "--ate-from") {
-      a.ate_from_s = std::stod(value());
+      a.ate_from_s.push_back(std::stod(value()));
+    } else if (s == "--ate-separate") {
+      a.ate = true;
+      a.ate_separate = true;
+    } else if (s == "--ate-only") {
+      a.ate = true;
+      a.ate_only = true;
+    } else if (s == "--cut") {
+      a.cut_s = std::stod(value());
     } else if (s == "--attempts") {
       a.attempts = true;
     } else if (s == "--diagnose") {
