@@ -13,6 +13,7 @@
 #include "test/benchmark/distribution.h"
 #include "test/testing/cut_simulation.h"
 #include "test/testing/sim_replay.h"
+#include "test/testing/spread.h"
 
 namespace vio {
 namespace {
@@ -46,6 +47,21 @@ double Ate(const Simulation& sim, const testing::SimReplay& run,
   double ate = -1.0;
   testing::AteFrom(sim, run.outputs, t_ns, &ate);
   return ate;
+}
+
+// The in-motion run's start: its first window's scale error (the spread of
+// its positions against the truth's, minus 1; test/testing/spread.h).
+double StartScaleError(const Simulation& sim, const StartRecord& start) {
+  std::vector<Eigen::Vector3d> est, truth;
+  for (const InitialFrame& f : start.window) {
+    est.push_back(f.p_w_b);
+    const auto it = std::lower_bound(
+        sim.ground_truth.begin(), sim.ground_truth.end(), f.t_imu_ns,
+        [](const StampedState& x, int64_t t) { return x.t_ns < t; });
+    truth.push_back(it == sim.ground_truth.end() ? sim.ground_truth.back().p_w_b
+                                                 : it->p_w_b);
+  }
+  return testing::Spread(est) / testing::Spread(truth) - 1.0;
 }
 
 // One window of the comparison (the common frames, or from t0 + S): both
@@ -83,7 +99,7 @@ void SameSequenceAte(const std::string& preset, const Args& args) {
     std::snprintf(b, sizeof(b), "from t0 + %.1f s", args.ate_from_s[i]);
     windows[1 + i].name = b;
   }
-  Distribution start_after_cut;
+  Distribution start_after_cut, start_scale;
   int no_start = 0;
   for (int k = 0; k < runs; ++k) {
     SimulatorOptions r = RunOptions(base, k, runs);
@@ -111,14 +127,15 @@ void SameSequenceAte(const std::string& preset, const Args& args) {
     start_after_cut.Add(after_s);
     const double a = Ate(sim, moving, first), b = Ate(sim, rest, first);
     windows[0].Add(a, b);
+    const StartRecord& start = moving.summary.starts.front();
+    const double scale = StartScaleError(sim, start);
+    start_scale.Add(std::abs(scale));
     std::printf(
-        "start %.2f s after the cut (%s); common frames: ATE in motion %.4f "
-        "m, from rest %.4f m, ratio %.3f; resets %lld / %lld\n",
-        after_s,
-        moving.summary.starts.empty()
-            ? "?"
-            : InitMethodName(moving.summary.starts.front().method),
-        a, b, a / b, static_cast<long long>(moving.summary.resets),
+        "start %.2f s after the cut (%s, scale %+.1f %%); common frames: ATE "
+        "in motion %.4f m, from rest %.4f m, ratio %.3f; resets %lld / "
+        "%lld\n",
+        after_s, InitMethodName(start.method), 100.0 * scale, a, b, a / b,
+        static_cast<long long>(moving.summary.resets),
         static_cast<long long>(rest.summary.resets));
     for (size_t i = 0; i < args.ate_from_s.size(); ++i) {
       const int64_t from = t0_ns + std::llround(args.ate_from_s[i] * 1e9);
@@ -132,9 +149,10 @@ void SameSequenceAte(const std::string& preset, const Args& args) {
   std::printf(
       "%s, the same sequence from rest and cut in motion, %d runs (%.0f s "
       "after the cut): %d without a start in motion; start after the cut "
-      "%s\n",
+      "%s; |start scale error| %s\n",
       preset.c_str(), runs, base.duration_s, no_start,
-      start_after_cut.Describe(1.0, "s").c_str());
+      start_after_cut.Describe(1.0, "s").c_str(),
+      start_scale.Describe(100.0, "%").c_str());
   for (const Comparison& w : windows) w.Print(runs);
 }
 
