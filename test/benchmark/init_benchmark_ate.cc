@@ -42,8 +42,7 @@ int64_t FirstEstimate(const std::vector<EstimatorOutput>& outputs) {
 
 // ATE of `run` against `sim`'s truth from t_ns on, aligned on those frames
 // alone (-1: fewer than three estimates there).
-double Ate(const Simulation& sim, const testing::SimReplay& run,
-           int64_t t_ns) {
+double Ate(const Simulation& sim, const testing::SimReplay& run, int64_t t_ns) {
   double ate = -1.0;
   testing::AteFrom(sim, run.outputs, t_ns, &ate);
   return ate;
@@ -141,9 +140,10 @@ void SameSequenceAte(const std::string& preset, const Args& args) {
       const int64_t from = t0_ns + std::llround(args.ate_from_s[i] * 1e9);
       const double ai = Ate(sim, moving, from), bi = Ate(sim, rest, from);
       windows[1 + i].Add(ai, bi);
-      std::printf("    from t0 + %.1f s: in motion %.4f m, from rest %.4f m, "
-                  "ratio %.3f\n",
-                  args.ate_from_s[i], ai, bi, ai / bi);
+      std::printf(
+          "    from t0 + %.1f s: in motion %.4f m, from rest %.4f m, "
+          "ratio %.3f\n",
+          args.ate_from_s[i], ai, bi, ai / bi);
     }
   }
   std::printf(

@@ -26,8 +26,7 @@ Simulation CutSimulation(const Simulation& simulation, int64_t t0_ns) {
   cut.landmarks_w = simulation.landmarks_w;
   cut.landmark_of_feature = simulation.landmark_of_feature;
   const auto imu = FirstFrom(simulation.imu, t0_ns);
-  const size_t first_imu =
-      static_cast<size_t>(imu - simulation.imu.begin());
+  const size_t first_imu = static_cast<size_t>(imu - simulation.imu.begin());
   if (simulation.imu.size() < first_imu + 2) {
     throw std::invalid_argument("CutSimulation: t0 " + std::to_string(t0_ns) +
                                 " ns leaves fewer than two IMU samples");
