@@ -50,8 +50,10 @@ Args Parse(int argc, char** argv) {
       a.seconds = std::stod(value());
     } else if (s == "--ate") {
       a.ate = true;
-    } else if (s == "--against-default") {
+    } else if (s == "--against-default") {  // a part of --ate-separate
       a.against_default = true;
+      a.ate = true;
+      a.ate_separate = true;
     } else if (s == "--long-window") {
       a.long_window_s = std::stod(value());
     } else if (s == "--max-scale-sigma") {

@@ -17,9 +17,9 @@ struct Args {
   int seeds = 20;
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
-  // With --ate-separate: also replay in motion with the preset's default
-  // options and compare on the frames both runs estimate (from the later
-  // first start).
+  // --against-default (implies --ate-separate): also replay in motion with
+  // the preset's default options and compare on the frames both runs
+  // estimate (from the later first start).
   bool against_default = false;
   bool verbose = false;
   bool diagnose = false;  // per attempt: pairs, parallax, truth
