@@ -14,11 +14,16 @@
 // running estimate's gravity direction error at fixed times after the first
 // frame (kLaterTimes: what the window makes of the start's tilt); --verbose
 // also prints per trial the scale's relative std the joint adjustment
-// claims (estimator/scale_uncertainty.h). With --ate
-// it also replays whole sequences in motion and from rest (the same motion
-// after a 2 s still start) and prints both ATEs; with --ate-from S also both
-// ATEs over the frames from S seconds on, aligned on those alone; --ate-runs N
-// replays min(N, --seeds) sequences per preset instead of 5.
+// claims (estimator/scale_uncertainty.h). With --ate it also compares
+// the ATE in motion against from rest on ONE sequence per run (2 s still, a
+// 2 s blend, the preset's motion) replayed whole and cut at a moving instant
+// (init_benchmark_ate.h; --cut S fixes the cut); --ate-separate instead
+// compares two simulations (the preset, and the same motion after the still
+// start), the former measurement; --ate-from S (repeatable) also both ATEs
+// over the frames from S seconds after the cut (after the first frame with
+// --ate-separate) on, aligned on those alone; --ate-runs N replays
+// min(N, --seeds) sequences per preset instead of 5; --ate-only skips the
+// start figures.
 //
 // --diagnose prints, per frame until the start, the mono start's verdict and
 // the pairs it could take (init_diagnosis.h). --stereo-span and
@@ -34,7 +39,8 @@
 //                  [--gyro-max-change-sigmas K]
 //                  [--against-default] [--gyro-min-parallax PX]
 //                  [--attempts] [--stereo-span S] [--stereo-window S]
-//                  [--ate-from S] [--ate-runs N]
+//                  [--ate-from S]... [--ate-runs N] [--ate-separate]
+//                  [--cut S] [--ate-only]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 
@@ -51,26 +57,15 @@
 #include "dataset/simulator.h"
 #include "estimator/estimator.h"
 #include "estimator/sequence_runner.h"
+#include "test/benchmark/distribution.h"
 #include "test/benchmark/init_benchmark_args.h"
+#include "test/benchmark/init_benchmark_ate.h"
 #include "test/benchmark/init_diagnosis.h"
 #include "test/testing/sim_replay.h"
 #include "test/testing/spread.h"
 
 namespace vio {
 namespace {
-
-struct Distribution {
-  std::vector<double> values;
-  void Add(double v) { values.push_back(v); }
-  double Quantile(double q) const { return diagnosis::Quantile(values, q); }
-  std::string Describe(double scale, const char* unit) const {
-    char b[160];
-    std::snprintf(b, sizeof(b), "median %.3g, p90 %.3g, max %.3g %s",
-                  scale * Quantile(0.5), scale * Quantile(0.9),
-                  scale * Quantile(1.0), unit);
-    return b;
-  }
-};
 
 const StampedState& TruthAt(const Simulation& sim, int64_t t_ns) {
   const auto it = std::lower_bound(
@@ -321,81 +316,6 @@ void StartFigures(const std::string& preset, const Args& args) {
   }
 }
 
-void AteFigures(const std::string& preset, const Args& args) {
-  const SimulatorOptions base = LoadSimulatorOptions(
-      std::string(VIO_SOURCE_DIR) + "/config/sim_" + preset + ".yaml");
-  const int runs = std::min(args.seeds, args.ate_runs);
-  Distribution moving, rest, moving_from, rest_from;
-  for (int k = 0; k < runs; ++k) {
-    SimulatorOptions o = base;
-    o.seed = static_cast<uint32_t>(2000 + k);
-    o.motion.start_phase_s =
-        base.motion.start_phase_s + k * base.motion.lap_period_s / runs;
-    const Simulation sim_a = Simulate(o);
-    const testing::SimReplay a =
-        testing::ReplaySimulation(sim_a, OptionsOf(o, args));
-    // The same motion from rest: a 2 s still start blending into it.
-    SimulatorOptions r = o;
-    r.motion.still_duration_s = 2.0;
-    r.motion.blend_duration_s = 2.0;
-    const Simulation sim_b = Simulate(r);
-    const testing::SimReplay b =
-        testing::ReplaySimulation(sim_b, OptionsOf(r, args));
-    moving.Add(a.ate_rmse_m);
-    rest.Add(b.ate_rmse_m);
-    if (args.ate_from_s >= 0.0) {
-      const int64_t from_ns = std::llround(args.ate_from_s * 1e9);
-      double ate_a = -1.0, ate_b = -1.0;
-      testing::AteFrom(sim_a, a.outputs,
-                       sim_a.ground_truth.front().t_ns + from_ns, &ate_a);
-      testing::AteFrom(sim_b, b.outputs,
-                       sim_b.ground_truth.front().t_ns + from_ns, &ate_b);
-      moving_from.Add(ate_a);
-      rest_from.Add(ate_b);
-      std::printf(
-          "    from %.1f s on: ATE in motion %.4f m, from rest %.4f m\n",
-          args.ate_from_s, ate_a, ate_b);
-    }
-    if (args.against_default) {
-      const Simulation sim = Simulate(o);
-      const testing::SimReplay d =
-          testing::ReplaySimulation(sim, testing::OptionsFor(o));
-      const int64_t t0 = sim.ground_truth.front().t_ns;
-      auto first_start = [&](const testing::SimReplay& r) {
-        return r.summary.starts.empty() ? INT64_MAX
-                                        : r.summary.starts.front().t_ns;
-      };
-      const int64_t common = std::max(first_start(a), first_start(d));
-      double ate_a = -1.0, ate_d = -1.0;
-      testing::AteFrom(sim, a.outputs, common, &ate_a);
-      testing::AteFrom(sim, d.outputs, common, &ate_d);
-      std::printf(
-          "    against the default options: start %.2f s (default %.2f s), "
-          "ATE whole run %.4f m (default %.4f m, ratio %.3f), on the frames "
-          "both estimate %.4f m (default %.4f m, ratio %.3f)\n",
-          1e-9 * static_cast<double>(first_start(a) - t0),
-          1e-9 * static_cast<double>(first_start(d) - t0), a.ate_rmse_m,
-          d.ate_rmse_m, a.ate_rmse_m / d.ate_rmse_m, ate_a, ate_d,
-          ate_a / ate_d);
-    }
-    std::printf(
-        "  %s seed %u: ATE in motion %.4f m (resets %lld), from rest "
-        "%.4f m (resets %lld)\n",
-        preset.c_str(), o.seed, a.ate_rmse_m,
-        static_cast<long long>(a.summary.resets), b.ate_rmse_m,
-        static_cast<long long>(b.summary.resets));
-  }
-  std::printf("%s ATE over %d runs of %.0f s: in motion %s; from rest %s\n",
-              preset.c_str(), runs, base.duration_s,
-              moving.Describe(1.0, "m").c_str(),
-              rest.Describe(1.0, "m").c_str());
-  if (args.ate_from_s >= 0.0) {
-    std::printf("  from %.1f s on: in motion %s; from rest %s\n",
-                args.ate_from_s, moving_from.Describe(1.0, "m").c_str(),
-                rest_from.Describe(1.0, "m").c_str());
-  }
-}
-
 }  // namespace
 }  // namespace vio
 
@@ -403,8 +323,12 @@ int main(int argc, char** argv) {
   try {
     const vio::Args args = vio::Parse(argc, argv);
     for (const std::string& p : args.presets) {
-      vio::StartFigures(p, args);
-      if (args.ate) vio::AteFigures(p, args);
+      if (!args.ate_only) vio::StartFigures(p, args);
+      if (args.ate_separate) {
+        vio::SeparateSimulationsAte(p, args);
+      } else if (args.ate) {
+        vio::SameSequenceAte(p, args);
+      }
     }
     return 0;
   } catch (const std::exception& e) {

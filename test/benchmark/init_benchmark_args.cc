@@ -50,8 +50,10 @@ Args Parse(int argc, char** argv) {
       a.seconds = std::stod(value());
     } else if (s == "--ate") {
       a.ate = true;
-    } else if (s == "--against-default") {
+    } else if (s == "--against-default") {  // a part of --ate-separate
       a.against_default = true;
+      a.ate = true;
+      a.ate_separate = true;
     } else if (s == "--long-window") {
       a.long_window_s = std::stod(value());
     } else if (s == "--max-scale-sigma") {
@@ -73,7 +75,15 @@ Args Parse(int argc, char** argv) {
     } else if (s == "--ate-runs") {
       a.ate_runs = std::stoi(value());
     } else if (s == "--ate-from") {
-      a.ate_from_s = std::stod(value());
+      a.ate_from_s.push_back(std::stod(value()));
+    } else if (s == "--ate-separate") {
+      a.ate = true;
+      a.ate_separate = true;
+    } else if (s == "--ate-only") {
+      a.ate = true;
+      a.ate_only = true;
+    } else if (s == "--cut") {
+      a.cut_s = std::stod(value());
     } else if (s == "--attempts") {
       a.attempts = true;
     } else if (s == "--diagnose") {

@@ -17,8 +17,9 @@ struct Args {
   int seeds = 20;
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
-  // With --ate: also replay in motion with the preset's default options and
-  // compare on the frames both runs estimate (from the later first start).
+  // --against-default (implies --ate-separate): also replay in motion with
+  // the preset's default options and compare on the frames both runs
+  // estimate (from the later first start).
   bool against_default = false;
   bool verbose = false;
   bool diagnose = false;  // per attempt: pairs, parallax, truth
@@ -41,10 +42,20 @@ struct Args {
   // init.stereo.min_span_s and window_s (< 0: the defaults).
   double stereo_span_s = -1.0;
   double stereo_window_s = -1.0;
-  // With --ate: also the ATE of both runs over their frames from this many
-  // seconds after the first frame on, aligned on those alone (< 0: not).
-  double ate_from_s = -1.0;
+  // With --ate (repeatable --ate-from S): also the ATE of both runs over
+  // their frames from S seconds after the cut (--ate-separate: after the
+  // first frame) on, aligned on those alone.
+  std::vector<double> ate_from_s;
   int ate_runs = 5;  // --ate: runs per preset (seeds 2000 on)
+  // --ate-separate: the former comparison, two simulations (the preset in
+  // motion, another from rest) instead of one sequence replayed whole and
+  // cut (init_benchmark_ate.h).
+  bool ate_separate = false;
+  // --cut S: the same-sequence comparison cuts every run at S seconds after
+  // its first sample (> 4: after the blend) instead of 5, 6.5, 8, 9.5 s in
+  // turn (<= 0: those).
+  double cut_s = -1.0;
+  bool ate_only = false;  // --ate-only: not the start figures
 };
 
 // The estimator options for replaying `simulation`
