@@ -143,5 +143,40 @@ TEST(WorldPointReprojectionFactor, PointBehindTheCameraIsFiniteAndInactive) {
   }
 }
 
+TEST(WorldPointReprojectionFactor, FirstEstimateJacobiansAreTakenThere) {
+  // keep_point_fej: the residual at p_w, the Jacobians those of the plain
+  // factor at p_w_first.
+  const FactorCase c = MakeWorldPointReprojectionCase();
+  std::mt19937 rng(17);
+  for (int t = 0; t < 50; ++t) {
+    const FactorInstance f = c.sample(rng);
+    const Eigen::Vector2d xy(0.05, -0.02);
+    const WorldPointReprojectionFactor plain(xy, 300.0);
+    std::vector<double> first = f.blocks[2];
+    first[0] += 0.03;
+    first[2] -= 0.05;
+    const WorldPointReprojectionFactor fej(xy, 300.0, first.data());
+    const double* at_p[] = {f.blocks[0].data(), f.blocks[1].data(),
+                            f.blocks[2].data()};
+    const double* at_first[] = {f.blocks[0].data(), f.blocks[1].data(),
+                                first.data()};
+    std::vector<RowMajorMatrix> J_fej(3), J_first(3);
+    std::vector<double*> p_fej, p_first;
+    for (size_t b = 0; b < 3; ++b) {
+      const int size = static_cast<int>(f.blocks[b].size());
+      J_fej[b].setZero(2, size);
+      J_first[b].setZero(2, size);
+      p_fej.push_back(J_fej[b].data());
+      p_first.push_back(J_first[b].data());
+    }
+    Eigen::Vector2d r_fej, r_plain, r_first;
+    ASSERT_TRUE(fej.Evaluate(at_p, r_fej.data(), p_fej.data()));
+    ASSERT_TRUE(plain.Evaluate(at_p, r_plain.data(), nullptr));
+    ASSERT_TRUE(plain.Evaluate(at_first, r_first.data(), p_first.data()));
+    EXPECT_EQ(r_fej, r_plain);
+    for (size_t b = 0; b < 3; ++b) EXPECT_EQ(J_fej[b], J_first[b]) << b;
+  }
+}
+
 }  // namespace
 }  // namespace vio
