@@ -49,17 +49,16 @@ std::set<int64_t> WindowProblem::ConvertLeavingTracks(
   std::set<int64_t> converted;
   for (const Residual& r : residuals_) {
     if (r.rho == nullptr || r.anchor_frame != oldest ||
-        converted.count(r.feature_id) != 0 ||
-        excluded.Involves(r.feature_id)) {
+        converted.count(r.feature_id) != 0 || excluded.Involves(r.feature_id)) {
       continue;
     }
     Landmark& l = features_->landmarks().at(r.feature_id);
-    const bool goes_on =
-        std::any_of(l.sightings.begin(), l.sightings.end(),
-                    [oldest](const Sighting& s) { return s.frame_id != oldest; });
+    const bool goes_on = std::any_of(
+        l.sightings.begin(), l.sightings.end(),
+        [oldest](const Sighting& s) { return s.frame_id != oldest; });
     if (!goes_on || !(l.inverse_depth > 0.0)) continue;
-    const Eigen::Vector3d p_w = FeatureManager::WorldPoint(
-        l, [this](int64_t frame, int camera) {
+    const Eigen::Vector3d p_w =
+        FeatureManager::WorldPoint(l, [this](int64_t frame, int camera) {
           return window_->T_w_c(frame, camera);
         });
     if (!p_w.allFinite()) continue;
@@ -72,11 +71,9 @@ std::set<int64_t> WindowProblem::ConvertLeavingTracks(
   return converted;
 }
 
-void WindowProblem::AddPointMarginalization(const OutlierReport& excluded,
-                                            const std::set<int64_t>& converted,
-                                            MarginalizationProblem* m,
-                                            std::set<const double*>* touched)
-    const {
+void WindowProblem::AddPointMarginalization(
+    const OutlierReport& excluded, const std::set<int64_t>& converted,
+    MarginalizationProblem* m, std::set<const double*>* touched) const {
   converted_factors_.clear();
   WindowFrame& oldest = *window_->frames.front();
   for (const int64_t id : converted) {

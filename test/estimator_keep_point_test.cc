@@ -21,17 +21,19 @@ SimReplay ReplayWith(bool stereo, ReanchoredTracks mode) {
   EstimatorOptions options = testing::OptionsFor(sim);
   options.landmarks.reanchored_tracks = mode;
   const SimReplay r = ReplaySimulation(Simulate(sim), options);
-  std::printf("%s %s: ATE %.4f m, %lld marginalisations (%lld failed), "
-              "%lld releases\n",
-              stereo ? "stereo" : "mono", ReanchoredTracksName(mode),
-              r.ate_rmse_m, static_cast<long long>(r.summary.marginalizations),
-              static_cast<long long>(r.summary.marginalization_failures),
-              static_cast<long long>(r.summary.points_released));
+  std::printf(
+      "%s %s: ATE %.4f m, %lld marginalisations (%lld failed), "
+      "%lld releases\n",
+      stereo ? "stereo" : "mono", ReanchoredTracksName(mode), r.ate_rmse_m,
+      static_cast<long long>(r.summary.marginalizations),
+      static_cast<long long>(r.summary.marginalization_failures),
+      static_cast<long long>(r.summary.points_released));
   return r;
 }
 
 TEST(EstimatorKeepPoint, MonoTracksWithEveryMarginalizationSucceeding) {
-  const SimReplay fej = ReplayWith(false, ReanchoredTracks::kKeepPointFirstEstimate);
+  const SimReplay fej =
+      ReplayWith(false, ReanchoredTracks::kKeepPointFirstEstimate);
   EXPECT_EQ(fej.summary.resets, 0);
   EXPECT_GT(fej.summary.marginalizations, 20);
   EXPECT_EQ(fej.summary.marginalization_failures, 0);
@@ -40,7 +42,8 @@ TEST(EstimatorKeepPoint, MonoTracksWithEveryMarginalizationSucceeding) {
 }
 
 TEST(EstimatorKeepPoint, StereoTracksWithEveryMarginalizationSucceeding) {
-  const SimReplay fej = ReplayWith(true, ReanchoredTracks::kKeepPointFirstEstimate);
+  const SimReplay fej =
+      ReplayWith(true, ReanchoredTracks::kKeepPointFirstEstimate);
   EXPECT_EQ(fej.summary.resets, 0);
   EXPECT_GT(fej.summary.marginalizations, 20);
   EXPECT_EQ(fej.summary.marginalization_failures, 0);

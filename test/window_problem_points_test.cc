@@ -62,8 +62,7 @@ class KeepPoint : public ::testing::Test {
     return m;
   }
   bool Marginalized(const MarginalizationProblem& m, const double* block) {
-    return std::count(m.marginalized.begin(), m.marginalized.end(), block) ==
-           1;
+    return std::count(m.marginalized.begin(), m.marginalized.end(), block) == 1;
   }
 
   const Eigen::Vector3d point_{0.3, 0.2, 4.0};
@@ -100,8 +99,8 @@ TEST_F(KeepPoint, FoldsEachSightingOnceAndKeepsThePoint) {
     // Its residual is zero at the conversion (the anchor ray was exact).
     Eigen::Vector2d r;
     const double* params[] = {blocks[0], blocks[1], blocks[2]};
-    ASSERT_TRUE(first.residual_blocks[0].cost->Evaluate(params, r.data(),
-                                                        nullptr));
+    ASSERT_TRUE(
+        first.residual_blocks[0].cost->Evaluate(params, r.data(), nullptr));
     EXPECT_LT(r.norm(), 1e-9);
     features_.RemoveFrame(0, [this](int64_t frame, int camera) {
       return window_.T_w_c(frame, camera);

@@ -3,6 +3,8 @@
 // the ambient ones, its residual against a closed form (and against the
 // inverse-depth factor on the same landmark), and a point behind the camera.
 
+#include "factors/world_point_factor.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -14,7 +16,6 @@
 #include "factors/check/jacobian_check.h"
 #include "factors/check/visual_scene.h"
 #include "factors/reprojection_factor.h"
-#include "factors/world_point_factor.h"
 
 namespace vio {
 namespace {
@@ -85,11 +86,11 @@ TEST(WorldPointReprojectionFactor, ResidualIsTheClosedFormProjectionError) {
   std::mt19937 rng(11);
   for (int t = 0; t < 40; ++t) {
     const bool camera1 = t % 2 == 1;
-    const VisualScene s = SampleVisualScene(
-        rng, VisualGeometry::kRealistic,
-        camera1 ? VisualTarget::kStereoOtherFrame
-                : VisualTarget::kMonoOtherFrame,
-        /*timed=*/false, 1.5);
+    const VisualScene s =
+        SampleVisualScene(rng, VisualGeometry::kRealistic,
+                          camera1 ? VisualTarget::kStereoOtherFrame
+                                  : VisualTarget::kMonoOtherFrame,
+                          /*timed=*/false, 1.5);
     // r = sqrt_info (pi(T_c_w p_w) - xy), T_c_w = (T_w_b T_b_c)^-1.
     const Eigen::Isometry3d T_w_c =
         IsometryFromBlock(s.pose_j) *
@@ -97,8 +98,7 @@ TEST(WorldPointReprojectionFactor, ResidualIsTheClosedFormProjectionError) {
     const Eigen::Vector3d p_c = T_w_c.inverse() * SceneWorldPoint(s);
     const Eigen::Vector2d expected =
         s.sqrt_info * (p_c.head<2>() / p_c.z() - s.obs_j.xy);
-    const Eigen::Vector2d r =
-        Residual(MakeWorldPointReprojection(s, camera1));
+    const Eigen::Vector2d r = Residual(MakeWorldPointReprojection(s, camera1));
     EXPECT_TRUE(r.isApprox(expected, 1e-9)) << r.transpose();
     // The noise-free sighting gives a zero residual.
     VisualScene clean = s;
@@ -107,8 +107,7 @@ TEST(WorldPointReprojectionFactor, ResidualIsTheClosedFormProjectionError) {
               1e-9);
     if (camera1) continue;
     // The same landmark as an inverse depth in keyframe i: the same error.
-    const ReprojectionFactor inverse_depth(s.obs_i.xy, s.obs_j.xy,
-                                           s.sqrt_info);
+    const ReprojectionFactor inverse_depth(s.obs_i.xy, s.obs_j.xy, s.sqrt_info);
     const double* params[] = {s.pose_i.data(), s.pose_j.data(),
                               s.extrinsic0.data(), &s.rho};
     Eigen::Vector2d r_rho;

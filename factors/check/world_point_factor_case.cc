@@ -15,12 +15,11 @@ Eigen::Vector3d SceneWorldPoint(const VisualScene& s) {
          (s.obs_i.xy.homogeneous() / s.rho);
 }
 
-FactorInstance MakeWorldPointReprojection(const VisualScene& s,
-                                          bool camera1) {
+FactorInstance MakeWorldPointReprojection(const VisualScene& s, bool camera1) {
   static const auto kPose = std::make_shared<const PoseManifold>();
   FactorInstance f;
-  f.cost = std::make_unique<WorldPointReprojectionFactor>(s.obs_j.xy,
-                                                          s.sqrt_info);
+  f.cost =
+      std::make_unique<WorldPointReprojectionFactor>(s.obs_j.xy, s.sqrt_info);
   const Block7& extrinsic = camera1 ? s.extrinsic1 : s.extrinsic0;
   const Eigen::Vector3d p_w = SceneWorldPoint(s);
   f.blocks = {std::vector<double>(s.pose_j.data(), s.pose_j.data() + 7),
