@@ -117,6 +117,13 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
   const YamlNode l = e.Child("landmarks");
   o->landmarks.outlier_threshold_px = l.Get<double>("outlier_threshold_px");
   o->landmarks.max_landmarks = l.Get<int>("max_landmarks");
+  const std::string reanchored = l.Get<std::string>("reanchored_tracks");
+  if (!ParseReanchoredTracks(reanchored, &o->landmarks.reanchored_tracks)) {
+    throw ConfigError(l.Where("reanchored_tracks") +
+                      " must be one of reuse, keep_point, keep_point_fej "
+                      "(got '" +
+                      reanchored + "')");
+  }
   const YamlNode s = e.Child("static_init");
   o->static_init.window_s = s.Get<double>("window_s");
   o->static_init.block_s = s.Get<double>("block_s");
@@ -175,7 +182,9 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << " deg, depth " << o.triangulation.min_depth_m << ".."
       << o.triangulation.max_depth_m << " m\n"
       << "  landmarks: outlier RMS > " << o.landmarks.outlier_threshold_px
-      << " px, at most " << o.landmarks.max_landmarks << "\n"
+      << " px, at most " << o.landmarks.max_landmarks
+      << ", re-anchored tracks: "
+      << ReanchoredTracksName(o.landmarks.reanchored_tracks) << "\n"
       << "  solver: "
       << (o.solver.backend == SolverBackend::kWindow
               ? std::string("window (inverse depths eliminated)")

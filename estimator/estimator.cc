@@ -245,6 +245,7 @@ void Estimator::SetPriorOnOldest(double velocity_sigma) {
                           options_.state_prior, velocity_sigma);
   prior_blocks_ = {f.pose.data(), f.speed_bias.data()};
   SetExtrinsicPrior();
+  DropWorldPoints();
 }
 
 void Estimator::SetExtrinsicPrior() {
@@ -283,6 +284,7 @@ void Estimator::DropSecondNewest() {
   newest.still_link = dropped.still_link && newest.still_link;
   features_.RemoveFrame(dropped.id, PoseFn());
   frames.erase(frames.begin() + k);
+  ReleaseOrphanPoints();
 }
 
 void Estimator::Reset(int64_t t_ns, Failure reason) {
@@ -290,6 +292,7 @@ void Estimator::Reset(int64_t t_ns, Failure reason) {
   summary_.reset_log.push_back({t_ns, reason});
   prior_.reset();
   prior_blocks_.clear();
+  DropWorldPoints();
   extrinsic_prior_.reset();
   extrinsic_prior_blocks_.clear();
   gap_bias_prior_.reset();

@@ -126,6 +126,9 @@ struct EstimatorSummary {
   int64_t landmarks_behind_removed = 0;   // inverse depth <= 0 after a solve
   int64_t marginalizations = 0;
   int64_t marginalization_failures = 0;  // prior replaced by a fresh one
+  // keep_point: world points marginalised out of the prior apart from a
+  // frame's marginalisation (their track ended otherwise), by batch.
+  int64_t points_released = 0;
   int64_t solver_failures = 0;           // Ceres reported failure
   // Per step: Ceres' wall time, and the CPU time of this thread during the
   // solve (unaffected by other processes competing for the cores) [s]. As
@@ -141,7 +144,8 @@ struct EstimatorSummary {
   double solver_linear_time_s = 0.0;      // linear solver (Schur, Cholesky)
   double solver_preprocess_time_s = 0.0;  // problem setup inside Ceres
   int64_t solver_iterations = 0;
-  // Each marginalisation: wall and thread CPU [s], binned as the solver's.
+  // Each marginalisation: wall and thread CPU [s], binned as the solver's
+  // (the CPU one also has keep_point's releases of world points).
   ValueHistogram marginalization_time_s{kTimeUnitS, kTimeExactBits};
   ValueHistogram marginalization_cpu_time_s{kTimeUnitS, kTimeExactBits};
   // Per step, the landmarks in the problem and the work the solver time is
@@ -273,6 +277,13 @@ class Estimator {
   void UpdateImuLinearization();
   WindowProblemSettings ProblemSettings() const;
   void SetPriorOnOldest(double velocity_sigma);
+  // keep_point (estimator_points.cc): marginalises the world points left
+  // without sightings out of the prior and deletes them; a failure puts a
+  // fresh state prior on the oldest frame, as MarginalizeOldest does.
+  void ReleaseOrphanPoints();
+  // Deletes every world point: for when prior_ is replaced by one that holds
+  // none.
+  void DropWorldPoints();
   // A fresh extrinsic prior at the current T_b_c (null when not estimated).
   void SetExtrinsicPrior();
   void Reset(int64_t t_ns, Failure reason);

@@ -6,6 +6,30 @@
 
 namespace vio {
 
+const char* ReanchoredTracksName(ReanchoredTracks r) {
+  switch (r) {
+    case ReanchoredTracks::kReuse:
+      return "reuse";
+    case ReanchoredTracks::kKeepPoint:
+      return "keep_point";
+    case ReanchoredTracks::kKeepPointFirstEstimate:
+      return "keep_point_fej";
+  }
+  return "?";
+}
+
+bool ParseReanchoredTracks(const std::string& name, ReanchoredTracks* r) {
+  for (ReanchoredTracks c :
+       {ReanchoredTracks::kReuse, ReanchoredTracks::kKeepPoint,
+        ReanchoredTracks::kKeepPointFirstEstimate}) {
+    if (name == ReanchoredTracksName(c)) {
+      *r = c;
+      return true;
+    }
+  }
+  return false;
+}
+
 bool EstimatorOptions::Validate(std::string* message) const {
   OptionRules c;
   c.AtLeast("window_size", window_size, 2);
@@ -24,6 +48,12 @@ bool EstimatorOptions::Validate(std::string* message) const {
             2);
   c.Positive("landmarks.outlier_threshold_px", landmarks.outlier_threshold_px);
   c.AtLeast("landmarks.max_landmarks", landmarks.max_landmarks, 1);
+  // The world-point factor has no time shift (factors/world_point_factor.h).
+  c.Nested("landmarks.",
+           !(landmarks.reanchored_tracks != ReanchoredTracks::kReuse &&
+             estimate_time_offset),
+           "reanchored_tracks keep_point does not support "
+           "estimate_time_offset");
   c.Positive("static_init.window_s", static_init.window_s);
   c.Require(std::isfinite(static_init.block_s) && static_init.block_s > 0.0 &&
                 static_init.block_s <= 0.5 * static_init.window_s,

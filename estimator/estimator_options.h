@@ -38,6 +38,30 @@ struct TriangulationOptions {
 // Which landmarks enter the problem and which leave it after the solve. (The
 // pixel noise and the robust kernel are the visual factors' own options,
 // factors/visual_factor_options.h.)
+// The landmarks anchored in the keyframe that leaves the window
+// (docs/recorded_flights.md, "Consistency").
+enum class ReanchoredTracks {
+  // All their factors go into the prior and their inverse depths are
+  // eliminated; re-anchored on their next sighting (depth carried over),
+  // every remaining sighting enters the problem again, although it already
+  // shaped the prior (VINS-Mono's way): a sighting is folded into the prior
+  // about five times.
+  kReuse,
+  // A track still alive becomes a point in the world (3 coordinates) that the
+  // prior keeps: only the leaving frame's sightings are folded (each sighting
+  // once, the anchor's with a residual of its own), its other sightings stay
+  // in the problem as world-point factors, and the point is marginalised out
+  // of the prior when its track ends or it is removed
+  // (factors/world_point_factor.h). Not with estimate_time_offset.
+  kKeepPoint,
+  // keep_point with the world-point factors' Jacobians taken at the point's
+  // first estimate (where the prior first held it).
+  kKeepPointFirstEstimate,
+};
+const char* ReanchoredTracksName(ReanchoredTracks r);
+// false when name is none of reuse, keep_point, keep_point_fej.
+bool ParseReanchoredTracks(const std::string& name, ReanchoredTracks* r);
+
 struct LandmarkOptions {
   // After the solve, a sighting whose reprojection error exceeds this is
   // removed; a landmark with most of its sightings beyond it is removed
@@ -46,6 +70,9 @@ struct LandmarkOptions {
   double outlier_threshold_px = 5.0;
   // Landmarks per step at most, those with the most sightings first [-].
   int max_landmarks = 120;
+  // What happens to the landmarks anchored in a keyframe that is
+  // marginalised.
+  ReanchoredTracks reanchored_tracks = ReanchoredTracks::kReuse;
 };
 
 // Static start: the IMU tells when the vehicle stands still.

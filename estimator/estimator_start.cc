@@ -198,6 +198,7 @@ bool Estimator::BuildWindow(const InitialWindow& start, bool restart) {
                           options_.init.max_speed_m_s);
   prior_blocks_ = {held.pose.data(), held.speed_bias.data()};
   SetExtrinsicPrior();
+  DropWorldPoints();
   last_keyframe_id_ = window_.frames.back()->id;
   return true;
 }

@@ -97,6 +97,7 @@ void Estimator::Slide(const WindowProblem& problem) {
     window_.frames.pop_front();
     window_.frames.front()->imu.reset();
   }
+  ReleaseOrphanPoints();
   UpdateImuLinearization();
 }
 
@@ -110,6 +111,10 @@ WindowProblemSettings Estimator::ProblemSettings() const {
   s.estimate_extrinsics = options_.estimate_extrinsics;
   s.estimate_time_offset = options_.estimate_time_offset;
   s.max_landmarks = options_.landmarks.max_landmarks;
+  s.keep_points =
+      options_.landmarks.reanchored_tracks != ReanchoredTracks::kReuse;
+  s.point_first_estimates = options_.landmarks.reanchored_tracks ==
+                            ReanchoredTracks::kKeepPointFirstEstimate;
   return s;
 }
 
@@ -142,6 +147,7 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
                             options_.state_prior.velocity_moving);
     prior_blocks_ = {next.pose.data(), next.speed_bias.data()};
     SetExtrinsicPrior();
+    DropWorldPoints();
   }
   summary_.marginalization_time_s.Add(
       Seconds(std::chrono::steady_clock::now() - start));

@@ -74,6 +74,7 @@ double FeatureManager::MedianParallax(int64_t frame_a, int64_t frame_b,
 
 Eigen::Vector3d FeatureManager::WorldPoint(const Landmark& landmark,
                                            const CameraPoseFn& T_w_c) {
+  if (landmark.world_point) return Eigen::Vector3d(landmark.p_w.data());
   const Sighting& a = landmark.anchor();
   return T_w_c(a.frame_id, a.camera) *
          (a.xy.homogeneous() / landmark.inverse_depth);
@@ -92,7 +93,7 @@ void FeatureManager::RemoveFrame(int64_t frame_id, const CameraPoseFn& T_w_c) {
                                        return s.frame_id == frame_id;
                                      }),
                       l.sightings.end());
-    if (l.sightings.empty()) {
+    if (l.sightings.empty() && !l.world_point) {
       it = landmarks_.erase(it);
       continue;
     }
@@ -124,14 +125,32 @@ void FeatureManager::RemoveSighting(int64_t feature_id, int64_t frame_id,
         l.sightings[i].camera != camera) {
       continue;
     }
-    if (static_cast<int>(i) == anchor) {
+    if (static_cast<int>(i) == anchor && !l.world_point) {
       l.triangulated = false;
       l.inverse_depth = 0.0;
     }
     l.sightings.erase(l.sightings.begin() + i);
     break;
   }
-  if (l.sightings.empty()) landmarks_.erase(it);
+  if (l.sightings.empty() && !l.world_point) landmarks_.erase(it);
+}
+
+void FeatureManager::RemoveLandmark(int64_t feature_id) {
+  const auto it = landmarks_.find(feature_id);
+  if (it == landmarks_.end()) return;
+  if (it->second.world_point) {
+    it->second.sightings.clear();
+  } else {
+    landmarks_.erase(it);
+  }
+}
+
+std::vector<int64_t> FeatureManager::OrphanPoints() const {
+  std::vector<int64_t> ids;
+  for (const auto& [id, l] : landmarks_) {
+    if (l.world_point && l.sightings.empty()) ids.push_back(id);
+  }
+  return ids;
 }
 
 int FeatureManager::TriangulateNew(const CameraPoseFn& T_w_c,
@@ -140,7 +159,7 @@ int FeatureManager::TriangulateNew(const CameraPoseFn& T_w_c,
   std::vector<TriangulationView> views;
   for (auto& [id, l] : landmarks_) {
     const int anchor = l.AnchorIndex();
-    if (l.triangulated || anchor < 0 ||
+    if (l.triangulated || l.world_point || anchor < 0 ||
         static_cast<int>(l.sightings.size()) < options.min_observations) {
       continue;
     }

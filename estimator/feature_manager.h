@@ -11,9 +11,19 @@
 // normalised coordinate (DESIGN.md, landmark block). When the anchor frame
 // leaves the window the landmark is re-anchored on its next sighting, keeping
 // its world position.
+//
+// With landmarks.reanchored_tracks keep_point a landmark whose anchor leaves
+// while its track goes on becomes a world point instead (Landmark::
+// world_point, converted by WindowProblem::OldestFrameMarginalization): no
+// anchor, every sighting a residual, its coordinates a block the
+// marginalisation prior holds. Such a landmark is never deleted here: when
+// its last sighting goes (or it is removed) it stays as an orphan with no
+// sightings until the estimator has marginalised its point out of the prior
+// (OrphanPoints, Forget).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -39,6 +49,14 @@ struct Landmark {
   std::vector<Sighting> sightings;  // ordered by (frame_id, camera)
   bool triangulated = false;        // inverse_depth holds an estimate
   double inverse_depth = 0.0;       // in the anchor camera [1/m]
+  // A point in the world (keep_point, see the header comment): then
+  // triangulated is false and inverse_depth unused; p_w is the parameter
+  // block the prior refers to by address.
+  bool world_point = false;
+  std::array<double, 3> p_w{};  // [m]
+  // p_w when it became a world point: where its factors' Jacobians are
+  // taken with first estimates (WindowProblemSettings) [m].
+  std::array<double, 3> p_w_first{};
 
   // Index of the first camera-0 sighting, -1 when camera 0 never saw it.
   int AnchorIndex() const {
@@ -96,16 +114,25 @@ class FeatureManager {
   int TriangulateNew(const CameraPoseFn& T_w_c,
                      const TriangulationOptions& options);
 
-  // The landmark's position in the world from its inverse depth [m].
+  // The landmark's position in the world from its inverse depth (a world
+  // point: p_w) [m].
   // Requires landmark.HasAnchor().
   static Eigen::Vector3d WorldPoint(const Landmark& landmark,
                                     const CameraPoseFn& T_w_c);
 
-  void RemoveLandmark(int64_t feature_id) { landmarks_.erase(feature_id); }
+  // Deletes the landmark; a world point loses its sightings instead (an
+  // orphan, see the header comment).
+  void RemoveLandmark(int64_t feature_id);
   // Removes one sighting (nothing when absent). When it was the anchor the
   // landmark is re-anchored untriangulated (its depth belonged to the
-  // removed bearing); a landmark left without sightings is deleted.
+  // removed bearing); a landmark left without sightings is deleted (a world
+  // point becomes an orphan).
   void RemoveSighting(int64_t feature_id, int64_t frame_id, int camera);
+  // The world points without sightings, by feature id.
+  std::vector<int64_t> OrphanPoints() const;
+  // Deletes the landmark whatever it is (a world point once its block has
+  // left the prior).
+  void Forget(int64_t feature_id) { landmarks_.erase(feature_id); }
   void Clear() { landmarks_.clear(); }
 
   // By feature id, so iteration is deterministic.

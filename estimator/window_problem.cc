@@ -51,6 +51,12 @@ WindowProblem::WindowProblem(Window* window, FeatureManager* features,
     AddBlock(window_->extrinsics[c].data(), 7, /*pose=*/true,
              !settings_.estimate_extrinsics);
   }
+  if (settings_.keep_points) {
+    // The prior may hold them: present even without sightings.
+    for (auto& [id, l] : features_->landmarks()) {
+      if (l.world_point) AddBlock(l.p_w.data(), 3, false, false);
+    }
+  }
   if (settings_.estimate_time_offset) {
     AddBlock(&window_->t_d, 1, /*pose=*/false, /*constant=*/false);
     // Unobservable while the camera barely moves: keep it to a plausible
@@ -123,6 +129,8 @@ void WindowProblem::AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
 }
 
 int WindowProblem::AddVisualFactors() {
+  const int points = settings_.keep_points ? AddWorldPoints() : 0;
+  const int max_landmarks = std::max(0, settings_.max_landmarks - points);
   // Candidates: triangulated, anchored in the window, seen again later.
   std::vector<Landmark*> candidates;
   for (auto& [id, l] : features_->landmarks()) {
@@ -134,11 +142,11 @@ int WindowProblem::AddVisualFactors() {
                    [](const Landmark* a, const Landmark* b) {
                      return a->sightings.size() > b->sightings.size();
                    });
-  if (static_cast<int>(candidates.size()) > settings_.max_landmarks) {
-    candidates.resize(settings_.max_landmarks);
+  if (static_cast<int>(candidates.size()) > max_landmarks) {
+    candidates.resize(max_landmarks);
   }
   for (Landmark* l : candidates) AddLandmark(l);
-  landmarks_used_ = static_cast<int>(candidates.size());
+  landmarks_used_ = points + static_cast<int>(candidates.size());
   return landmarks_used_;
 }
 
@@ -364,7 +372,9 @@ OutlierReport WindowProblem::Outliers(double threshold_px) const {
     const bool last = k + 1 == residuals_.size() ||
                       residuals_[k + 1].feature_id != r.feature_id;
     if (!last) continue;
-    if (!(*r.rho > 0.0)) {
+    // A world point has no anchor to be behind (its residuals are clamped
+    // behind any camera, factors/world_point_factor.h).
+    if (r.rho != nullptr && !(*r.rho > 0.0)) {
       report.behind.push_back(r.feature_id);
     } else if (failed || 2 * static_cast<int>(bad.size()) > total) {
       report.landmarks.push_back(r.feature_id);
@@ -382,17 +392,29 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
     const OutlierReport& excluded) const {
   MarginalizationProblem m;
   const WindowFrame& oldest = *window_->frames.front();
+  const std::set<int64_t> converted = settings_.keep_points
+                                          ? ConvertLeavingTracks(excluded)
+                                          : std::set<int64_t>();
+  // A landmark's factors that leave with the oldest frame: an inverse
+  // depth's when anchored there (unless converted), a world point's when
+  // the sighting is there.
+  auto leaving = [&](const Residual& r) {
+    if (r.feature_id < 0 || excluded.Involves(r.feature_id)) return false;
+    if (r.point != nullptr) return r.target_frame == oldest.id;
+    return r.anchor_frame == oldest.id && converted.count(r.feature_id) == 0;
+  };
   std::set<const double*> touched;
   for (const Residual& r : residuals_) {
     const bool prior =
         r.feature_id < 0 && r.imu_start_frame < 0 && r.link_start_frame < 0;
     const bool use = prior || r.imu_start_frame == oldest.id ||
-                     r.link_start_frame == oldest.id ||
-                     (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-                      !excluded.Involves(r.feature_id));
+                     r.link_start_frame == oldest.id || leaving(r);
     if (!use) continue;
     m.residual_blocks.push_back({r.cost, r.loss, r.blocks});
     touched.insert(r.blocks.begin(), r.blocks.end());
+  }
+  if (settings_.keep_points) {
+    AddPointMarginalization(excluded, converted, &m, &touched);
   }
   // In the order the blocks entered the problem, never by address: the
   // prior's layout, and so every sum over it, must not vary between runs.
@@ -407,8 +429,7 @@ MarginalizationProblem WindowProblem::OldestFrameMarginalization(
     if (touched.count(block) != 0) m.marginalized.push_back(block);
   }
   for (const Residual& r : residuals_) {
-    if (r.feature_id >= 0 && r.anchor_frame == oldest.id &&
-        !excluded.Involves(r.feature_id) &&
+    if (r.rho != nullptr && leaving(r) &&
         (m.marginalized.empty() || m.marginalized.back() != r.rho)) {
       m.marginalized.push_back(r.rho);
     }

@@ -24,6 +24,15 @@
 // landmarks anchored in a frame have residuals touching that frame: the
 // marginalisation of the oldest frame then removes exactly those landmarks,
 // and the prior holds no landmark.
+//
+// With keep_points (landmarks.reanchored_tracks keep_point) a world-point
+// landmark (feature_manager.h) has one WorldPointReprojectionFactor per
+// sighting, blocks pose_j, T_b_c, p_w; its p_w is a block of the dense
+// (not eliminated) system, as the prior may hold it. Its factors come first
+// and are always in the problem (they count against max_landmarks). The
+// marginalisation of the oldest frame then folds only that frame's
+// sightings of a track that goes on: see OldestFrameMarginalization
+// (window_problem_points.cc).
 
 #include <ceres/ceres.h>
 
@@ -57,6 +66,11 @@ struct WindowProblemSettings {
   bool estimate_time_offset = false;
   double max_time_offset_s = 0.02;  // |t_d| bound while estimated [s]
   int max_landmarks = 120;
+  // landmarks.reanchored_tracks keep_point (see the header comment).
+  bool keep_points = false;
+  // keep_points: the world-point factors' Jacobians at the point's first
+  // estimate (Landmark::p_w_first, factors/world_point_factor.h).
+  bool point_first_estimates = false;
 };
 
 // What the outlier test found.
@@ -117,6 +131,14 @@ class WindowProblem {
   // and every visual factor of the landmarks anchored in it; marginalised are
   // its pose and speed-bias blocks and those landmarks' inverse depths.
   // Landmarks with outliers (about to be removed) are left out.
+  // With keep_points, a landmark anchored there whose track goes on (a
+  // sighting in another frame) is converted into a world point instead
+  // (Landmark::world_point and p_w set in the feature manager, at the current
+  // estimate): only its sightings in the oldest frame are folded, as
+  // world-point factors (owned here, so this problem must outlive the
+  // marginalisation), and its point is kept. A world point's factors in the
+  // oldest frame are folded too; its point is marginalised when it has no
+  // sighting in another frame.
   MarginalizationProblem OldestFrameMarginalization(
       const OutlierReport& excluded) const;
 
@@ -138,7 +160,8 @@ class WindowProblem {
     const TangentJacobians* tangent = nullptr;    // visual factors: == cost
     std::vector<double*> blocks;
     int64_t feature_id = -1;    // visual residuals only
-    double* rho = nullptr;      // visual residuals: the inverse depth
+    double* rho = nullptr;      // inverse-depth visual residuals: rho
+    double* point = nullptr;    // world-point visual residuals: p_w
     int64_t target_frame = -1;  // visual residuals: the sighting's frame
     int target_camera = 0;
     int64_t anchor_frame = -1;
@@ -163,6 +186,20 @@ class WindowProblem {
   std::vector<bool> TouchedBlocks() const;
   void AddResidual(Residual residual);
   void AddLandmark(Landmark* landmark);
+  // keep_points: the factors of every world point with sightings; returns
+  // how many (window_problem_points.cc).
+  int AddWorldPoints();
+  // keep_points, for OldestFrameMarginalization: converts the landmarks
+  // anchored in the oldest frame whose track goes on into world points and
+  // returns their ids.
+  std::set<int64_t> ConvertLeavingTracks(const OutlierReport& excluded) const;
+  // keep_points: adds the converted landmarks' factors in the oldest frame
+  // and their point blocks to m (their window blocks to touched), and marks
+  // the world points whose track ends there for marginalisation.
+  void AddPointMarginalization(const OutlierReport& excluded,
+                               const std::set<int64_t>& converted,
+                               MarginalizationProblem* m,
+                               std::set<const double*>* touched) const;
   // Image velocity d xy / dt [1/s] of the point p_c [m] in `camera` of
   // frame, predicted from the frame's current state (the timed factors).
   Eigen::Vector2d MotionVelocity(const WindowFrame& frame,
@@ -180,6 +217,9 @@ class WindowProblem {
   std::vector<int> indices_;  // every residual's blocks (block_order_ index)
   int num_visual_ = 0;
   int landmarks_used_ = 0;
+  // The world-point factors of the landmarks converted by the last
+  // OldestFrameMarginalization (referred to by its result).
+  mutable std::vector<std::unique_ptr<ceres::CostFunction>> converted_factors_;
 };
 
 }  // namespace vio

@@ -49,6 +49,7 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.triangulation.max_depth_m, d.triangulation.max_depth_m);
   EXPECT_EQ(o.landmarks.outlier_threshold_px, d.landmarks.outlier_threshold_px);
   EXPECT_EQ(o.landmarks.max_landmarks, d.landmarks.max_landmarks);
+  EXPECT_EQ(o.landmarks.reanchored_tracks, d.landmarks.reanchored_tracks);
   EXPECT_EQ(o.static_init.max_acc_std, d.static_init.max_acc_std);
   EXPECT_EQ(o.state_prior.tilt_rad, d.state_prior.tilt_rad);
   EXPECT_EQ(o.failure.max_position_jump_m, d.failure.max_position_jump_m);

@@ -40,6 +40,18 @@ TEST(InitMethod, NamesParseBack) {
   EXPECT_EQ(m, InitMethod::kMono);
 }
 
+TEST(ReanchoredTracks, NamesParseBack) {
+  for (ReanchoredTracks r :
+       {ReanchoredTracks::kReuse, ReanchoredTracks::kKeepPoint,
+        ReanchoredTracks::kKeepPointFirstEstimate}) {
+    ReanchoredTracks parsed = ReanchoredTracks::kReuse;
+    EXPECT_TRUE(ParseReanchoredTracks(ReanchoredTracksName(r), &parsed));
+    EXPECT_EQ(parsed, r);
+  }
+  ReanchoredTracks r = ReanchoredTracks::kReuse;
+  EXPECT_FALSE(ParseReanchoredTracks("skip_prior", &r));
+}
+
 TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
   struct Case {
     void (*spoil)(EstimatorOptions*);
@@ -58,6 +70,12 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
              std::numeric_limits<double>::quiet_NaN();
        },
        "landmarks.outlier_threshold_px must be > 0"},
+      {[](EstimatorOptions* o) {
+         o->landmarks.reanchored_tracks = ReanchoredTracks::kKeepPoint;
+         o->estimate_time_offset = true;
+       },
+       "landmarks.reanchored_tracks keep_point does not support "
+       "estimate_time_offset"},
       {[](EstimatorOptions* o) { o->solver.max_time_s = -0.01; },
        "solver.max_time_s must be >= 0"},
       {[](EstimatorOptions* o) { o->solver.function_tolerance = -1e-3; },

@@ -143,10 +143,11 @@ void PrintSummary(const EstimatorSummary& s,
       s.residuals_per_step.Quantile(0.5));
   std::printf(
       "  marginalisation       median %.2f ms, max %.2f ms CPU (%lld, "
-      "%lld failed)\n",
+      "%lld failed, %lld releases of world points)\n",
       1e3 * s.marginalization_cpu_time_s.Quantile(0.5),
       1e3 * s.marginalization_cpu_time_s.Quantile(1.0),
-      (long long)s.marginalizations, (long long)s.marginalization_failures);
+      (long long)s.marginalizations, (long long)s.marginalization_failures,
+      (long long)s.points_released);
   std::printf(
       "  landmarks per step    median %.0f; outliers removed: %lld "
       "sightings, %lld landmarks; %lld landmarks behind their anchor "

@@ -53,6 +53,15 @@ FactorCase MakeStereoTwoFrameReprojectionCase(
 FactorCase MakeTimedStereoTwoFrameReprojectionCase(
     VisualGeometry geometry = VisualGeometry::kMixed);
 
+// The world-point reprojection factor (factors/world_point_factor.h) on the
+// scenes above, the landmark at SceneWorldPoint; check/
+// world_point_factor_case.cc. camera1: seen by camera 1 of keyframe j (the
+// scene drawn with kStereoOtherFrame), else camera 0 (kMonoOtherFrame).
+Eigen::Vector3d SceneWorldPoint(const VisualScene& scene);
+FactorInstance MakeWorldPointReprojection(const VisualScene& scene,
+                                          bool camera1);
+FactorCase MakeWorldPointReprojectionCase();
+
 // The marginalisation prior (factors/marginalization_prior.h).
 FactorCase MakeMarginalizationPriorCase();
 

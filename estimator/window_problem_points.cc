@@ -1,0 +1,113 @@
+// The world points of the window problem (landmarks.reanchored_tracks
+// keep_point): their factors in the step's problem, and their part in the
+// marginalisation of the oldest frame. Why: with inverse depths (reuse) a
+// track's remaining sightings are folded into the prior again each time its
+// anchor leaves, about five times per sighting, which makes the estimator
+// overconfident (docs/recorded_flights.md, "Consistency"); holding the track
+// as a point the prior keeps folds each sighting once and keeps the track's
+// link to its past.
+
+#include <algorithm>
+
+#include "estimator/window_problem.h"
+#include "factors/world_point_factor.h"
+
+namespace vio {
+
+int WindowProblem::AddWorldPoints() {
+  int used = 0;
+  double* ext[kMaxCameras] = {window_->extrinsics[0].data(),
+                              window_->extrinsics[1].data()};
+  for (auto& [id, l] : features_->landmarks()) {
+    if (!l.world_point || l.sightings.empty()) continue;
+    for (const Sighting& s : l.sightings) {
+      Residual r;
+      r.loss = loss_.get();
+      r.feature_id = l.feature_id;
+      r.point = l.p_w.data();
+      r.target_frame = s.frame_id;
+      r.target_camera = s.camera;
+      r.owned = std::make_unique<WorldPointReprojectionFactor>(
+          s.xy, settings_.visual.SqrtInformation(settings_.focal_px[s.camera]),
+          settings_.point_first_estimates ? l.p_w_first.data() : nullptr);
+      r.tangent =
+          static_cast<const WorldPointReprojectionFactor*>(r.owned.get());
+      r.cost = r.owned.get();
+      r.blocks = {window_->Find(s.frame_id)->pose.data(), ext[s.camera],
+                  l.p_w.data()};
+      AddResidual(std::move(r));
+      ++num_visual_;
+    }
+    ++used;
+  }
+  return used;
+}
+
+std::set<int64_t> WindowProblem::ConvertLeavingTracks(
+    const OutlierReport& excluded) const {
+  const int64_t oldest = window_->frames.front()->id;
+  std::set<int64_t> converted;
+  for (const Residual& r : residuals_) {
+    if (r.rho == nullptr || r.anchor_frame != oldest ||
+        converted.count(r.feature_id) != 0 || excluded.Involves(r.feature_id)) {
+      continue;
+    }
+    Landmark& l = features_->landmarks().at(r.feature_id);
+    const bool goes_on = std::any_of(
+        l.sightings.begin(), l.sightings.end(),
+        [oldest](const Sighting& s) { return s.frame_id != oldest; });
+    if (!goes_on || !(l.inverse_depth > 0.0)) continue;
+    const Eigen::Vector3d p_w =
+        FeatureManager::WorldPoint(l, [this](int64_t frame, int camera) {
+          return window_->T_w_c(frame, camera);
+        });
+    if (!p_w.allFinite()) continue;
+    std::copy(p_w.data(), p_w.data() + 3, l.p_w.begin());
+    l.p_w_first = l.p_w;
+    l.world_point = true;
+    l.triangulated = false;
+    converted.insert(r.feature_id);
+  }
+  return converted;
+}
+
+void WindowProblem::AddPointMarginalization(
+    const OutlierReport& excluded, const std::set<int64_t>& converted,
+    MarginalizationProblem* m, std::set<const double*>* touched) const {
+  converted_factors_.clear();
+  WindowFrame& oldest = *window_->frames.front();
+  for (const int64_t id : converted) {
+    Landmark& l = features_->landmarks().at(id);
+    for (const Sighting& s : l.sightings) {
+      if (s.frame_id != oldest.id) continue;
+      converted_factors_.push_back(
+          std::make_unique<WorldPointReprojectionFactor>(
+              s.xy,
+              settings_.visual.SqrtInformation(settings_.focal_px[s.camera]),
+              settings_.point_first_estimates ? l.p_w_first.data() : nullptr));
+      m->residual_blocks.push_back(
+          {converted_factors_.back().get(),
+           loss_.get(),
+           {oldest.pose.data(), window_->extrinsics[s.camera].data(),
+            l.p_w.data()}});
+      touched->insert(oldest.pose.data());
+      touched->insert(window_->extrinsics[s.camera].data());
+    }
+    m->parameter_blocks.push_back({l.p_w.data(), 3, nullptr, false});
+  }
+  // A world point seen in no other frame leaves with this one (its factors
+  // are all among the oldest frame's, folded above). One with outliers is
+  // about to be removed: the estimator releases it from the prior then.
+  for (const auto& [id, l] : features_->landmarks()) {
+    if (!l.world_point || l.sightings.empty() || converted.count(id) != 0 ||
+        excluded.Involves(id)) {
+      continue;
+    }
+    const bool ends = std::all_of(
+        l.sightings.begin(), l.sightings.end(),
+        [&oldest](const Sighting& s) { return s.frame_id == oldest.id; });
+    if (ends) m->marginalized.push_back(l.p_w.data());
+  }
+}
+
+}  // namespace vio
