@@ -289,6 +289,31 @@ TEST(EstimatorStart, StereoStartAtRestIsHeldStillToo) {
   EXPECT_GT(run.summary.zero_velocity_frames, 10);
 }
 
+// The joint adjustment's change of the window's path length is reported as a
+// scale change only where the window's path defines a scale: at rest the
+// path is position noise (the still stereo start printed "moved the scale
+// -91.6 %"), in motion it is the scale (estimator/initial_window.h).
+TEST(EstimatorStart, ScaleChangeIsNotMeaningfulAtRestButIsInMotion) {
+  const Simulation still = Simulate(Preset("stereo", 1.0));
+  const testing::SimReplay rest =
+      testing::ReplaySimulation(still, testing::OptionsFor(still.options));
+  ASSERT_FALSE(rest.summary.starts.empty());
+  const InitDiagnostics& at_rest = rest.summary.starts.front().diagnostics;
+  EXPECT_EQ(rest.summary.starts.front().method, InitMethod::kStereo);
+  EXPECT_FALSE(ScaleChangeDefined(at_rest))
+      << "path " << at_rest.refined_path_m << " m, change "
+      << at_rest.refine_scale_change << ", spread sigma "
+      << at_rest.refined_scale_sigma;
+  const Simulation moving = Simulate(Preset("motion_stereo", 1.0));
+  const testing::SimReplay run =
+      testing::ReplaySimulation(moving, testing::OptionsFor(moving.options));
+  ASSERT_FALSE(run.summary.starts.empty());
+  const InitDiagnostics& in_motion = run.summary.starts.front().diagnostics;
+  EXPECT_TRUE(ScaleChangeDefined(in_motion))
+      << "spread sigma " << in_motion.refined_scale_sigma;
+  EXPECT_LT(in_motion.refined_scale_sigma, 0.05);
+}
+
 // Three of init_benchmark's motion_stereo trials (seed, start phase) whose
 // 0.4 s stereo start was refused past 0.5 s on the PnP trajectory's |g| or
 // rotations before the later frames were placed on chained stereo points and
