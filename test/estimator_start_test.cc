@@ -278,7 +278,7 @@ TEST(EstimatorStart, StillStartIsHeldStillByTheZeroMotionFactor) {
 }
 
 TEST(EstimatorStart, StereoStartAtRestIsHeldStillToo) {
-  // In stereo, auto starts in motion after 0.4 s (before the static start's
+  // In stereo, auto starts in motion after 0.45 s (before the static start's
   // 1 s): the zero-velocity detector must hold the rest of the still start.
   SimulatorOptions o = Preset("stereo", 3.0);
   const Simulation sim = Simulate(o);
@@ -314,16 +314,20 @@ TEST(EstimatorStart, ScaleChangeIsNotMeaningfulAtRestButIsInMotion) {
   EXPECT_LT(in_motion.refined_scale_sigma, 0.05);
 }
 
-// Three of init_benchmark's motion_stereo trials (seed, start phase) whose
-// 0.4 s stereo start was refused past 0.5 s on the PnP trajectory's |g| or
-// rotations before the later frames were placed on chained stereo points and
-// |g| was judged in its own sigmas (docs/initialisation.md): now each starts
-// by 0.5 s, its tilt within 1.5 deg.
+// Four of init_benchmark's motion_stereo trials (seed, start phase) whose
+// stereo start was refused past 0.5 s: 1001, 1003 and 1012 at the 0.4 s span
+// on the PnP trajectory's |g| or rotations before the later frames were
+// placed on chained stereo points and |g| was judged in its own sigmas;
+// 1007 and 1012 at the 0.45 s span on a rotation misfit of 0.53 deg (limit
+// 0.5) and a |g| 3.5 of its own sigmas off (limit 3) before those checks were
+// set for a failed PnP (estimator/in_motion_start.cc; docs/initialisation.md,
+// "The 0.45 s stereo span"): now each starts by 0.5 s, its tilt within
+// 1.5 deg.
 TEST(EstimatorStart, StereoStartInMotionWithinHalfASecond) {
   const struct {
     uint32_t seed;
     double phase_s;
-  } trials[] = {{1001, 3.75}, {1003, 5.25}, {1012, 12.0}};
+  } trials[] = {{1001, 3.75}, {1003, 5.25}, {1007, 8.25}, {1012, 12.0}};
   for (const auto& trial : trials) {
     SimulatorOptions o = Preset("motion_stereo", 0.7);
     o.seed = trial.seed;
