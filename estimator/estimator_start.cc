@@ -106,6 +106,7 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   if (BuildWindow(start, restart)) {
     const double path_before = PathLength(window_);
     reason = RefineStart(start.method, &record.diagnostics, &value, &limit);
+    record.diagnostics.refined_path_m = PathLength(window_);
     record.diagnostics.refine_scale_change =
         path_before > 0.0 ? PathLength(window_) / path_before - 1.0 : 0.0;
   }

@@ -10,8 +10,27 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
 
-// A metric (stereo) trajectory's free |g| is refused only beyond this many of
-// its own standard deviations as well as beyond init.max_gravity_error.
+// The checks of a metric (stereo) trajectory guard against a failed PnP, not
+// against the PnP's own errors, which the joint adjustment that completes the
+// start removes with the gyroscope and every sighting. Its frames rest on
+// stereo points whose depths are tens of centimetres uncertain at a few
+// metres, so their rotations and positions err together; measured over 60
+// trials of init_benchmark's motion_stereo at the 0.45 s span
+// (docs/initialisation.md, "The 0.45 s stereo span"):
+//   - the visual rotations' RMS misfit to the gyroscope: 0.14-0.53 deg on
+//     trajectories the adjustment made good starts of (the one refused at
+//     0.5 deg: tilt 0.83 deg, scale +0.4 %), 34.7 deg where PnP failed.
+//     The limit for a metric trajectory is kMetricMisfitFactor times
+//     init.max_rotation_misfit_deg.
+//   - the free |g|'s distance from g in the linear solve's own sigma
+//     (VelocityGravityScale::gravity_norm_sigma): median 0.9, p90 2.6 of
+//     those sigmas, where a calibrated sigma gives 0.67 and 1.64; the sigma
+//     is about kGravitySigmaUnderestimate too small (1.46 in the alignment's
+//     own Monte Carlo test with independent noise,
+//     GravityNormSigmaMatchesTheSpreadOfGravityNorm), and |g| is refused
+//     beyond 3 calibrated sigmas (and beyond init.max_gravity_error).
+constexpr double kMetricMisfitFactor = 2.0;
+constexpr double kGravitySigmaUnderestimate = 1.5;
 constexpr double kGravityNormSigmas = 3.0;
 
 InitAttempt Failed(InitFailure reason, double value, double limit) {
@@ -106,9 +125,11 @@ InitAttempt AlignAndBuild(const VisualTrajectory& visual,
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   const Eigen::Vector3d b_g = AlignGyroscopeBias(aligned, zero, intervals);
   const double misfit_deg = kRadToDeg * RotationMisfitRms(aligned, *intervals);
-  if (!(misfit_deg <= init.max_rotation_misfit_deg)) {
-    return Failed(InitFailure::kRotationMismatch, misfit_deg,
-                  init.max_rotation_misfit_deg);
+  const double misfit_limit =
+      visual.metric ? kMetricMisfitFactor * init.max_rotation_misfit_deg
+                    : init.max_rotation_misfit_deg;
+  if (!(misfit_deg <= misfit_limit)) {
+    return Failed(InitFailure::kRotationMismatch, misfit_deg, misfit_limit);
   }
   const bool estimate_scale = !visual.metric;
   AlignmentOptions alignment;
@@ -139,13 +160,14 @@ InitAttempt AlignAndBuild(const VisualTrajectory& visual,
     }
   }
   // Stereo: the PnP positions carry millimetres of noise, which over the
-  // 0.4 s of the stereo start move the free |g| by up to 1.4 m/s^2 with the
+  // 0.45 s of the stereo start move the free |g| by up to 1.4 m/s^2 with the
   // trajectory sound (the joint adjustment then holds |g| at g); a |g| within
-  // 3 of its own sigmas is that noise, not a wrong start. Mono keeps the
-  // fixed limit: there |g| also checks the scale.
+  // 3 of its calibrated sigmas (above) is that noise, not a wrong start.
+  // Mono keeps the fixed limit: there |g| also checks the scale.
   const double gravity_limit =
       visual.metric ? std::max(init.max_gravity_error,
-                               kGravityNormSigmas * vgs.gravity_norm_sigma)
+                               kGravityNormSigmas * kGravitySigmaUnderestimate *
+                                   vgs.gravity_norm_sigma)
                     : init.max_gravity_error;
   if (!(window->diagnostics.gravity_error <= gravity_limit)) {
     return Failed(InitFailure::kGravityMagnitude, vgs.g_v.norm() - g,

@@ -42,6 +42,12 @@ void SetGauge(const Eigen::Vector3d& p_w_b, const Eigen::Quaterniond& q_w_b,
       window);
 }
 
+bool ScaleChangeDefined(const InitDiagnostics& diagnostics) {
+  return diagnostics.refined_path_m >= kMinScalePathM &&
+         diagnostics.refined_scale_sigma >= 0.0 &&
+         diagnostics.refined_scale_sigma <= kMaxDefinedScaleSigma;
+}
+
 double YawBetween(const Eigen::Matrix3d& R_from, const Eigen::Matrix3d& R_to) {
   // |Rz A - B|_F^2 = 6 - 2 tr(B^T Rz A) = 6 - 2 tr(Rz N), N = A B^T, and
   // tr(Rz N) = cos(theta) (N00 + N11) + sin(theta) (N01 - N10) + N22,

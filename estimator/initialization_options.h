@@ -107,8 +107,8 @@ struct MonoInitOptions {
 // Stereo start in motion: depths from the first stereo pair, later frames by
 // PnP, then gyroscope bias, velocities and gravity from the IMU.
 struct StereoInitOptions {
-  double window_s = 0.45;      // frames of the last window_s are used [s]
-  double min_span_s = 0.4;     // the frames used span at least [s]
+  double window_s = 0.5;       // frames of the last window_s are used [s]
+  double min_span_s = 0.45;    // the frames used span at least [s]
   int min_stereo_points = 20;  // triangulated from the oldest frame's pair [-]
   int min_pnp_inliers = 15;    // per frame placed by PnP [-]
   double pnp_threshold_px = 3.0;  // PnP RANSAC reprojection threshold [px]

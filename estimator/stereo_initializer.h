@@ -10,7 +10,9 @@
 //      seen before to the points the next frames are placed on;
 //   3. the metric trajectory is aligned with the IMU: gyroscope bias,
 //      velocities and gravity, the scale held at 1 (in_motion_start.h; its
-//      free |g| is checked against g within 3 of its own sigmas).
+//      checks, the free |g| in its own sigmas and the rotation misfit, are
+//      set for a failed PnP, not for the PnP's own errors, which the joint
+//      adjustment removes).
 // No stillness and no IMU excitation are needed: the scale comes from the
 // stereo baseline, and gravity shows in the specific force whatever the
 // motion. The joint visual-inertial adjustment that completes the start runs

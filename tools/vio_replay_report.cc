@@ -173,10 +173,30 @@ void PrintStarts(const EstimatorSummary& s) {
                 static_cast<long long>(r.t_ns));
     if (r.method != InitMethod::kStatic) {
       const InitDiagnostics& d = r.diagnostics;
-      std::printf(
-          ": %zu frames, IMU excitation %.2f m/s^2, joint adjustment "
-          "moved the scale %+.1f %%",
-          r.window.size(), d.imu_excitation, 100.0 * d.refine_scale_change);
+      std::printf(": %zu frames, IMU excitation %.2f m/s^2, ", r.window.size(),
+                  d.imu_excitation);
+      if (ScaleChangeDefined(d)) {
+        std::printf("joint adjustment moved the scale %+.1f %%",
+                    100.0 * d.refine_scale_change);
+      } else if (d.refined_path_m < kMinScalePathM) {
+        // At rest the path is position noise (estimator/initial_window.h).
+        std::printf(
+            "joint adjustment's scale change not meaningful (the window's "
+            "path, %.1f mm, is too short to define a scale: at rest it is "
+            "position noise)",
+            1e3 * d.refined_path_m);
+      } else if (d.refined_scale_sigma >= 0.0) {
+        std::printf(
+            "joint adjustment's scale change not meaningful (the window's "
+            "path, %.1f mm, defines no scale: its spread's std is %.0f %% "
+            "of it)",
+            1e3 * d.refined_path_m, 100.0 * d.refined_scale_sigma);
+      } else {
+        std::printf(
+            "joint adjustment's scale change not meaningful (the window's "
+            "path, %.1f mm, has no computable uncertainty)",
+            1e3 * d.refined_path_m);
+      }
     }
     std::printf("\n");
   }
