@@ -5,23 +5,12 @@
 // removed, a non-keyframe dropped) is marginalised out of the prior here
 // (estimator/point_release.h).
 
-#include <time.h>
-
 #include "estimator/estimator.h"
 #include "estimator/point_release.h"
 #include "estimator/state_prior.h"
+#include "estimator/thread_cpu_time.h"
 
 namespace vio {
-namespace {
-
-// CPU time of the calling thread [s] (as estimator_window.cc's).
-double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
 
 void Estimator::ReleaseOrphanPoints() {
   const double cpu_start = ThreadCpuSeconds();

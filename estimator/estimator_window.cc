@@ -2,8 +2,6 @@
 // the check of the step, the slide (outliers out, the oldest keyframe
 // marginalised into the prior) and the newest pose's covariance.
 
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 
@@ -11,6 +9,7 @@
 #include "estimator/marginalization.h"
 #include "estimator/pose_covariance.h"
 #include "estimator/state_prior.h"
+#include "estimator/thread_cpu_time.h"
 #include "estimator/window_problem.h"
 
 namespace vio {
@@ -18,14 +17,6 @@ namespace {
 
 double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
-}
-
-// CPU time of the calling thread [s]: what a step costs, whatever else runs
-// on the machine.
-double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace
