@@ -88,6 +88,11 @@ void ReadInit(const YamlNode& n, InitOptions* o) {
   o->stereo.min_stereo_points = s.Get<int>("min_stereo_points");
   o->stereo.min_pnp_inliers = s.Get<int>("min_pnp_inliers");
   o->stereo.pnp_threshold_px = s.Get<double>("pnp_threshold_px");
+  o->stereo.refine_outlier_rounds = s.Get<int>("refine_outlier_rounds");
+  o->stereo.refine_outlier_threshold_px =
+      s.Get<double>("refine_outlier_threshold_px");
+  o->stereo.max_refine_scale_change =
+      s.Get<double>("max_refine_scale_change");
 }
 
 void ReadZeroVelocity(const YamlNode& z, ZeroVelocityOptions* o) {

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "estimator/estimator.h"
@@ -207,22 +208,60 @@ bool Estimator::BuildWindow(const InitialWindow& start, bool restart) {
 InitFailure Estimator::RefineStart(InitMethod method,
                                    InitDiagnostics* diagnostics, double* value,
                                    double* limit) {
-  WindowProblem problem(&window_, &features_, ProblemSettings());
-  problem.AddPrior(prior_.get(), prior_blocks_);
-  if (extrinsic_prior_) {
-    problem.AddPrior(extrinsic_prior_.get(), extrinsic_prior_blocks_);
-  }
-  if (!problem.AddImuFactors()) return InitFailure::kRefinementFailed;
-  const int landmarks = problem.AddVisualFactors();
-  const double path_before = PathLength(window_);
-  if (options_.init.refine_iterations > 0) {
+  int landmarks = 0;
+  auto make_problem = [&]() {
+    auto p =
+        std::make_unique<WindowProblem>(&window_, &features_, ProblemSettings());
+    p->AddPrior(prior_.get(), prior_blocks_);
+    if (extrinsic_prior_) {
+      p->AddPrior(extrinsic_prior_.get(), extrinsic_prior_blocks_);
+    }
+    if (!p->AddImuFactors()) p.reset();
+    if (p) landmarks = p->AddVisualFactors();
+    return p;
+  };
+  auto solve = [&](WindowProblem* p) {
+    if (options_.init.refine_iterations <= 0) return;
     SolverOptions solver = options_.solver;
     solver.max_iterations = options_.init.refine_iterations;
     // A step starts from the prediction, near its minimum, and stops at a
     // 1e-3 relative cost change; this solve starts from the alignment, far
     // from it (the scale ~10 % off), and runs to Ceres' default 1e-6.
     solver.function_tolerance = std::min(solver.function_tolerance, 1e-6);
-    problem.Solve(solver);
+    p->Solve(solver);
+  };
+  std::unique_ptr<WindowProblem> problem = make_problem();
+  if (!problem) return InitFailure::kRefinementFailed;
+  const double path_before = PathLength(window_);
+  solve(problem.get());
+  // A stereo start's landmarks include mismatched pairs and outlier
+  // sightings, which the robust kernel bounds but does not remove: out with
+  // them (as a step's slide would) and solved again, before it is judged.
+  const int rounds =
+      method == InitMethod::kStereo ? options_.init.stereo.refine_outlier_rounds
+                                    : 0;
+  for (int round = 0; round < rounds; ++round) {
+    const OutlierReport outliers =
+        problem->Outliers(options_.init.stereo.refine_outlier_threshold_px);
+    if (outliers.landmarks.empty() && outliers.sightings.empty() &&
+        outliers.behind.empty()) {
+      break;
+    }
+    problem.reset();
+    for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
+    for (int64_t id : outliers.behind) features_.RemoveLandmark(id);
+    for (const OutlierReport::BadSighting& b : outliers.sightings) {
+      features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
+    }
+    diagnostics->refine_outliers_removed +=
+        static_cast<int>(outliers.landmarks.size() + outliers.behind.size() +
+                         outliers.sightings.size());
+    // Re-anchored landmarks lost their depth with their anchor's sighting.
+    summary_.landmarks_triangulated +=
+        features_.TriangulateNew(PoseFn(), options_.triangulation);
+    problem = make_problem();
+    if (!problem) return InitFailure::kRefinementFailed;
+    solve(problem.get());
   }
   // The failure rules of a step, against the alignment's newest state.
   const WindowFrame& newest = *window_.frames.back();
@@ -252,7 +291,17 @@ InitFailure Estimator::RefineStart(InitMethod method,
   std::vector<const double*> poses;
   for (const auto& f : window_.frames) poses.push_back(f->pose.data());
   diagnostics->refined_scale_sigma =
-      RelativeSpreadSigma(problem.CeresProblem().get(), poses);
+      RelativeSpreadSigma(problem->CeresProblem().get(), poses);
+  // A stereo start's scale is the calibrated baseline's: where the path
+  // defines a scale, the adjustment may move it only so far.
+  InitDiagnostics adjusted = *diagnostics;
+  adjusted.refined_path_m = PathLength(window_);
+  if (method == InitMethod::kStereo && ScaleChangeDefined(adjusted) &&
+      !(std::abs(change) <= options_.init.stereo.max_refine_scale_change)) {
+    *value = change;
+    *limit = options_.init.stereo.max_refine_scale_change;
+    return InitFailure::kRefinementScaleChange;
+  }
   // The gyroscope-aided start holds b_a at zero and its own covariance
   // leaves b_a out, so its scale sigma is no guard (measured 0.7-2 % against
   // errors of up to 73 %): the adjusted window's sigma takes its place, and the
@@ -275,7 +324,7 @@ InitFailure Estimator::RefineStart(InitMethod method,
     *limit = max_sigma;
     return InitFailure::kScaleUncertain;
   }
-  Slide(problem);
+  Slide(*problem);
   return InitFailure::kNone;
 }
 

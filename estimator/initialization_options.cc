@@ -72,6 +72,12 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
   r.AtLeast("init.stereo.min_stereo_points", stereo.min_stereo_points, 6);
   r.AtLeast("init.stereo.min_pnp_inliers", stereo.min_pnp_inliers, 6);
   r.Positive("init.stereo.pnp_threshold_px", stereo.pnp_threshold_px);
+  r.AtLeast("init.stereo.refine_outlier_rounds", stereo.refine_outlier_rounds,
+            0);
+  r.Positive("init.stereo.refine_outlier_threshold_px",
+             stereo.refine_outlier_threshold_px);
+  r.Positive("init.stereo.max_refine_scale_change",
+             stereo.max_refine_scale_change);
   r.Positive("init.max_rotation_misfit_deg", max_rotation_misfit_deg);
   r.Positive("init.max_gravity_error", max_gravity_error);
   r.Positive("init.max_speed_m_s", max_speed_m_s);

@@ -96,6 +96,12 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.init.stereo.min_stereo_points, d.init.stereo.min_stereo_points);
   EXPECT_EQ(o.init.stereo.min_pnp_inliers, d.init.stereo.min_pnp_inliers);
   EXPECT_EQ(o.init.stereo.pnp_threshold_px, d.init.stereo.pnp_threshold_px);
+  EXPECT_EQ(o.init.stereo.refine_outlier_rounds,
+            d.init.stereo.refine_outlier_rounds);
+  EXPECT_EQ(o.init.stereo.refine_outlier_threshold_px,
+            d.init.stereo.refine_outlier_threshold_px);
+  EXPECT_EQ(o.init.stereo.max_refine_scale_change,
+            d.init.stereo.max_refine_scale_change);
   const ZeroVelocityOptions& z = o.zero_velocity;
   const ZeroVelocityOptions& dz = d.zero_velocity;
   EXPECT_EQ(z.enabled, dz.enabled);

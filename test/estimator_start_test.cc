@@ -345,6 +345,33 @@ TEST(EstimatorStart, StereoStartInMotionWithinHalfASecond) {
   }
 }
 
+// The stereo start with 5 % outlier sightings (camera.outlier_fraction):
+// without the outlier rounds of the start's joint adjustment
+// (init.stereo.refine_outlier_rounds) these trials of init_benchmark started
+// with scale errors of +68, +116 and +61 %, with them -1.5, +4.6 and +1.2 %
+// (docs/initialisation.md, "The stereo start with outliers"). A start may be
+// refused and retried; the one accepted must keep its scale.
+TEST(EstimatorStart, StereoStartWithOutliersKeepsItsScale) {
+  const struct {
+    uint32_t seed;
+    double phase_s;
+  } trials[] = {{1008, 9.0}, {1010, 10.5}, {1015, 14.25}};
+  for (const auto& trial : trials) {
+    SimulatorOptions o = Preset("motion_stereo", 1.0);
+    o.camera.outlier_fraction = 0.05;
+    o.seed = trial.seed;
+    o.motion.start_phase_s = trial.phase_s;
+    const Simulation sim = Simulate(o);
+    const testing::SimReplay run =
+        testing::ReplaySimulation(sim, testing::OptionsFor(o));
+    ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
+    const StartCheck c = CheckFirstStart(sim, run);
+    EXPECT_LT(std::abs(c.scale_error), 0.1) << "seed " << trial.seed;
+    std::printf("seed %u: start after %.2f s, scale %+.1f %%\n", trial.seed,
+                c.time_s, 100.0 * c.scale_error);
+  }
+}
+
 TEST(EstimatorStart, ZeroVelocityNeverFiresInSlowMotion) {
   // 2 s still, a 2 s blend, then ~0.1 m/s with accelerations the IMU test
   // cannot tell from rest: the image test must keep the detector quiet

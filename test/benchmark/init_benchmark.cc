@@ -27,7 +27,10 @@
 //
 // --diagnose prints, per frame until the start, the mono start's verdict and
 // the pairs it could take (init_diagnosis.h). --stereo-span and
-// --stereo-window override init.stereo's min_span_s and window_s;
+// --stereo-window override init.stereo's min_span_s and window_s,
+// --stereo-outlier-rounds, --stereo-outlier-px and --stereo-max-change its
+// refine_outlier_rounds, refine_outlier_threshold_px and
+// max_refine_scale_change;
 // --min-parallax,
 // --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
 // init.mono's options, to measure them.
@@ -39,6 +42,8 @@
 //                  [--gyro-max-change-sigmas K]
 //                  [--against-default] [--gyro-min-parallax PX]
 //                  [--attempts] [--stereo-span S] [--stereo-window S]
+//                  [--stereo-outlier-rounds N] [--stereo-outlier-px PX]
+//                  [--stereo-max-change X]
 //                  [--ate-from S]... [--ate-runs N] [--ate-separate]
 //                  [--cut S] [--ate-only]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
@@ -144,6 +149,8 @@ struct Trial {
   double accel_bias = 0.0;         // |b_a - b_a true| at the newest frame
   double initial_gyro_bias = 0.0;  // the initialiser's, before the adjustment
   double parallax_px = 0.0;        // the start's own parallax measure
+  double refine_change = 0.0;      // the joint adjustment's path change
+  int refine_outliers = 0;         // sightings its outlier rounds removed
   InitMethod method = InitMethod::kAuto;
   std::string failures;
   // The running estimate's gravity direction error at kLaterTimes after the
@@ -241,6 +248,8 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   t.accel_bias = (newest.b_a - gt.b_a).norm();
   t.initial_gyro_bias = (start.diagnostics.initial_b_g - gt.b_g).norm();
   t.parallax_px = start.diagnostics.parallax_px;
+  t.refine_change = start.diagnostics.refine_scale_change;
+  t.refine_outliers = start.diagnostics.refine_outliers_removed;
   if (!summary.init_attempts.empty()) {
     t.failures = DescribeInitFailures(summary.init_attempts);
   }
@@ -272,11 +281,13 @@ void StartFigures(const std::string& preset, const Args& args) {
             " (%s) after %.2f s, scale %+.2f %% (alignment %+.2f %%), "
             "gravity %.3f deg, b_g %.5f (initialiser's %.5f), b_a %.3f, "
             "predicted scale sigma %.2f %% (initialiser's own %.2f %%), "
-            "parallax %.2f px",
+            "parallax %.2f px, adjustment's path change %+.2f %%, "
+            "outliers removed %d",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
             100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
             t.initial_gyro_bias, t.accel_bias, 100 * t.scale_sigma,
-            100 * t.own_sigma, t.parallax_px);
+            100 * t.own_sigma, t.parallax_px, 100 * t.refine_change,
+            t.refine_outliers);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }

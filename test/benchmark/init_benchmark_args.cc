@@ -31,6 +31,15 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   if (args.stereo_window_s > 0.0) {
     o.init.stereo.window_s = args.stereo_window_s;
   }
+  if (args.stereo_outlier_rounds >= 0) {
+    o.init.stereo.refine_outlier_rounds = args.stereo_outlier_rounds;
+  }
+  if (args.stereo_outlier_px > 0.0) {
+    o.init.stereo.refine_outlier_threshold_px = args.stereo_outlier_px;
+  }
+  if (args.stereo_max_change > 0.0) {
+    o.init.stereo.max_refine_scale_change = args.stereo_max_change;
+  }
   return o;
 }
 
@@ -72,6 +81,12 @@ Args Parse(int argc, char** argv) {
       a.stereo_span_s = std::stod(value());
     } else if (s == "--stereo-window") {
       a.stereo_window_s = std::stod(value());
+    } else if (s == "--stereo-outlier-rounds") {
+      a.stereo_outlier_rounds = std::stoi(value());
+    } else if (s == "--stereo-outlier-px") {
+      a.stereo_outlier_px = std::stod(value());
+    } else if (s == "--stereo-max-change") {
+      a.stereo_max_change = std::stod(value());
     } else if (s == "--ate-runs") {
       a.ate_runs = std::stoi(value());
     } else if (s == "--ate-from") {

@@ -42,6 +42,11 @@ struct Args {
   // init.stereo.min_span_s and window_s (< 0: the defaults).
   double stereo_span_s = -1.0;
   double stereo_window_s = -1.0;
+  // init.stereo.refine_outlier_rounds and max_refine_scale_change (< 0:
+  // the defaults).
+  int stereo_outlier_rounds = -1;
+  double stereo_max_change = -1.0;
+  double stereo_outlier_px = -1.0;  // refine_outlier_threshold_px
   // With --ate (repeatable --ate-from S): also the ATE of both runs over
   // their frames from S seconds after the cut (--ate-separate: after the
   // first frame) on, aligned on those alone.
