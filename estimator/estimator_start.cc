@@ -243,16 +243,9 @@ InitFailure Estimator::RefineStart(InitMethod method,
   for (int round = 0; round < rounds; ++round) {
     const OutlierReport outliers =
         problem->Outliers(options_.init.stereo.refine_outlier_threshold_px);
-    if (outliers.landmarks.empty() && outliers.sightings.empty() &&
-        outliers.behind.empty()) {
-      break;
-    }
+    if (outliers.empty()) break;
     problem.reset();
-    for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
-    for (int64_t id : outliers.behind) features_.RemoveLandmark(id);
-    for (const OutlierReport::BadSighting& b : outliers.sightings) {
-      features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
-    }
+    outliers.RemoveFrom(&features_);
     diagnostics->refine_outliers_removed +=
         static_cast<int>(outliers.landmarks.size() + outliers.behind.size() +
                          outliers.sightings.size());

@@ -70,13 +70,9 @@ void Estimator::Slide(const WindowProblem& problem) {
   // The marginalisation evaluates the problem's factors: before any
   // landmark they refer to is removed.
   if (marginalize) MarginalizeOldest(problem, outliers);
-  for (int64_t id : outliers.landmarks) features_.RemoveLandmark(id);
-  for (int64_t id : outliers.behind) features_.RemoveLandmark(id);
+  outliers.RemoveFrom(&features_);
   summary_.landmarks_behind_removed +=
       static_cast<int64_t>(outliers.behind.size());
-  for (const OutlierReport::BadSighting& b : outliers.sightings) {
-    features_.RemoveSighting(b.feature_id, b.frame_id, b.camera);
-  }
   summary_.outlier_landmarks_removed +=
       static_cast<int64_t>(outliers.landmarks.size());
   summary_.outlier_sightings_removed +=

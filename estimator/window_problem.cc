@@ -336,6 +336,14 @@ ceres::Solver::Summary WindowProblem::SolveWithCeres(
   return summary;
 }
 
+void OutlierReport::RemoveFrom(FeatureManager* features) const {
+  for (int64_t id : landmarks) features->RemoveLandmark(id);
+  for (int64_t id : behind) features->RemoveLandmark(id);
+  for (const BadSighting& b : sightings) {
+    features->RemoveSighting(b.feature_id, b.frame_id, b.camera);
+  }
+}
+
 bool OutlierReport::Involves(int64_t feature_id) const {
   for (int64_t id : landmarks) {
     if (id == feature_id) return true;

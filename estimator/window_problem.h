@@ -88,6 +88,12 @@ struct OutlierReport {
   // still looks valid. To remove whole, counted apart from the outliers.
   std::vector<int64_t> behind;
   bool Involves(int64_t feature_id) const;
+  bool empty() const {
+    return landmarks.empty() && sightings.empty() && behind.empty();
+  }
+  // Removes what it reports from features: the landmarks and the ones behind
+  // whole, then the sightings (a step's slide, the stereo start's rounds).
+  void RemoveFrom(FeatureManager* features) const;
 };
 
 class WindowProblem {
