@@ -121,8 +121,9 @@ int SchurComplement(const Eigen::MatrixXd& H, const Eigen::VectorXd& b,
 // When the floored eigenvalues are exact zeros (world points, see
 // null_space_floor.h) the floored H_f = V max(S, s_min) V^T is found without
 // the eigenvectors and J = L^T of H_f = L L^T, r0 = -L^-1 b*: the same
-// J^T J, J^T r0 and |r0|^2 (to rounding), at a third of the eigen path's
-// cost; *floored_information then receives H_f (= J^T J), else is emptied.
+// J^T J, J^T r0 and |r0|^2 (to rounding), at about 60 % of the eigen
+// path's cost (docs/speed.md); *floored_information then receives H_f
+// (= J^T J), else is emptied.
 int SquareRoot(const Eigen::MatrixXd& H_star, const Eigen::VectorXd& b_star,
                double floor, Eigen::MatrixXd* J, Eigen::VectorXd* r0,
                Eigen::MatrixXd* floored_information) {
