@@ -22,9 +22,10 @@
 // than 0.02 per step; rotated to H*'s eigenvectors on that span
 // (Rayleigh-Ritz: Q^T H* Q = U diag(t) U^T, W = Q U),
 //   H_f = H* + W diag(s_min - t) W^T,
-// which is the eigen path's H_f to rounding when W spans N to rounding (the
-// residual check below). About 1.5 k^3 flops, most of it the
-// tridiagonalisation.
+// which is the eigen path's H_f when W spans N (the residual check below
+// bounds W's angle to N by about kNullFraction; exact zeros give residuals
+// at rounding, and on sim_default the two paths' trajectories agree to
+// 1.3 um). About 1.5 k^3 flops, most of it the tridiagonalisation.
 
 #include <Eigen/Core>
 
@@ -34,7 +35,7 @@ namespace vio {
 // returns true when the case above holds: every eigenvalue of the symmetric
 // H below s_min = floor * max eigenvalue is at most kNullFraction * s_min,
 // and the m vectors found leave a residual |H W - W diag(t)| (Frobenius) of
-// at most kNullFraction * s_min (so that W spans N to rounding). Returns
+// at most kNullFraction * s_min (W's angle to N at most about that). Returns
 // false otherwise (nothing written): the caller takes the eigen path. Also
 // false when the largest eigenvalue is not > 0. With nothing below s_min,
 // H_f is H and m = 0.
