@@ -24,6 +24,10 @@
 //      H* is positive definite and no pivot is below the floor times the
 //      largest; otherwise by H* = V S V^T, S floored at a relative epsilon,
 //        J = sqrt(S) V^T,   r0 = -sqrt(S)^-1 V^T b*.
+//      When the floored eigenvalues are exact zeros (world points: one per
+//      point converted with a single sighting) V max(S, eps) V^T is found
+//      without the eigenvectors (null_space_floor.h) and J is its Cholesky
+//      factor: the same prior to rounding.
 //      Either way the prior r = r0 + J (x (-) x0) has the Schur complement's
 //      Hessian and gradient at x0.
 // References: Sibley et al., JFR 2010; Leutenegger et al., IJRR 2015 (the
@@ -116,7 +120,10 @@ struct MarginalizationResult {
   Eigen::MatrixXd information;  // H* (symmetric, before the floor)
   Eigen::VectorXd gradient;     // -b*: the cost's gradient on the kept blocks
   Eigen::MatrixXd jacobian;     // J = L^T, or sqrt(S) V^T (step 4)
-  Eigen::VectorXd residual0;    // r0 = -J^-T b*
+  // With floored eigenvalues, J^T J when it is known without forming it (the
+  // floor of null_space_floor.h); empty otherwise.
+  Eigen::MatrixXd floored_information;
+  Eigen::VectorXd residual0;  // r0 = -J^-T b*
 
   bool ok() const { return status != MarginalizationStatus::kFailed; }
 
