@@ -103,8 +103,7 @@ InitAttempt StereoInitializer::TryInitialize(
   for (size_t k = 1; k < selected.size(); ++k) {
     int inliers = 0;
     if (!PlaceCameraByPnp(CameraFeatures(frames[selected[k]], 0),
-                          visual.points_v, visual.T_v_c[k - 1], pnp,
-                          &visual.T_v_c[k], &inliers)) {
+                          visual.points_v, pnp, &visual.T_v_c[k], &inliers)) {
       return failed(InitFailure::kPnpFailed, inliers, s.min_pnp_inliers);
     }
     AddStereoPoints(frames[selected[k]], visual.T_v_c[k], T_c0_c1_,

@@ -65,14 +65,15 @@ struct SfmResult {
 SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
                                    const SfmOptions& options);
 
-// Places a camera by PnP (OpenCV solvePnPRansac, iterative refinement) on
-// the known points of `points` it sees, starting from `guess` (the camera's
-// pose in v). True with *T_v_c when at least options.min_pnp_inliers agree
-// within options.pnp_threshold_px; *inliers is their number either way.
+// Places a camera by PnP (OpenCV solvePnPRansac, then Levenberg-Marquardt
+// on the points that agree with its pose) on the known points of `points` it
+// sees. True with *T_v_c (the camera's pose in v) when at least
+// options.min_pnp_inliers agree with that pose within
+// options.pnp_threshold_px; *inliers is their number either way.
 bool PlaceCameraByPnp(const SfmFrame& frame,
                       const std::map<int64_t, Eigen::Vector3d>& points,
-                      const Eigen::Isometry3d& guess, const SfmOptions& options,
-                      Eigen::Isometry3d* T_v_c, int* inliers);
+                      const SfmOptions& options, Eigen::Isometry3d* T_v_c,
+                      int* inliers);
 
 // The median over the correspondences (x_a[i], x_b[i], normalised) of the
 // distance left by the rotation R_b_a that best maps the bearings of a onto
