@@ -143,7 +143,7 @@ bool PlaceCameraByPnp(const SfmFrame& frame,
   // No extrinsic guess: with one, OpenCV's RANSAC (4.6) writes each minimal
   // sample's EPnP model into the guess and starts its final iterative
   // refinement from the last sample's, not the best one's; with 5 % outlier
-  // sightings that refinement ended 34-177 deg off with none of the inliers
+  // sightings that refinement ended 33-178 deg off with none of the inliers
   // RANSAC reported (docs/initialisation.md, "The stereo start with
   // outliers"). Without it, the refinement starts from a DLT on the inliers.
   cv::Mat rvec, tvec;

@@ -352,7 +352,7 @@ TEST(EstimatorStart, StereoStartInMotionWithinHalfASecond) {
 // start with outliers"); with the rounds set to 0, seed 1008 started +29.4 %
 // off and seed 1010 not within the 1 s. Seeds 1007 and 1010 then started
 // only after 0.65 and 0.75 s: their first attempts were refused with
-// rotation misfits of 15-110 deg, the chained PnP placing frames tens of
+// rotation misfits of 1.5-96 deg, the chained PnP placing frames tens of
 // degrees off (OpenCV's RANSAC refining from its last sample; estimator/
 // structure_from_motion.cc, PlaceCameraByPnp). Each now starts by 0.5 s and
 // within 5 % of the true scale.
