@@ -237,7 +237,7 @@ TEST(StructureFromMotion, PnpPlacesACameraAmongGrossOutliers) {
     o.focal_px = f;
     Eigen::Isometry3d placed = Eigen::Isometry3d::Identity();
     int inliers = 0;
-    ASSERT_TRUE(PlaceCameraByPnp(frame, points, o, &placed, &inliers))
+    ASSERT_TRUE(PlaceCameraByPnp(frame, points, nullptr, o, &placed, &inliers))
         << "scene " << scene << ", inliers " << inliers;
     const double rotation_deg =
         Eigen::AngleAxisd(placed.linear().transpose() * T_v_c.linear())
