@@ -152,11 +152,11 @@ bool PlaceCameraByPnp(const SfmFrame& frame,
             T_c_v.translation().y(), T_c_v.translation().z());
   }
   std::vector<int> ransac_inliers;
-  const bool ok = cv::solvePnPRansac(
-      object, image, Identity3(), cv::noArray(), rvec, tvec,
-      /*useExtrinsicGuess=*/guess != nullptr, /*iterationsCount=*/100,
-      static_cast<float>(threshold), 0.99, ransac_inliers,
-      cv::SOLVEPNP_ITERATIVE);
+  const bool ok =
+      cv::solvePnPRansac(object, image, Identity3(), cv::noArray(), rvec, tvec,
+                         /*useExtrinsicGuess=*/guess != nullptr,
+                         /*iterationsCount=*/100, static_cast<float>(threshold),
+                         0.99, ransac_inliers, cv::SOLVEPNP_ITERATIVE);
   *inliers_out = static_cast<int>(ransac_inliers.size());
   if (!ok) return false;
   if (guess == nullptr) {

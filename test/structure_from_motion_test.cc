@@ -211,11 +211,12 @@ TEST(StructureFromMotion, PnpPlacesACameraAmongGrossOutliers) {
     // The camera 0.3 m and a few degrees from the points' frame v.
     Eigen::Isometry3d T_v_c = Eigen::Isometry3d::Identity();
     T_v_c.linear() =
-        Eigen::AngleAxisd(0.1 * (unit(rng) - 0.5),
-                          Eigen::Vector3d(unit(rng), unit(rng), 1.0).normalized())
+        Eigen::AngleAxisd(
+            0.1 * (unit(rng) - 0.5),
+            Eigen::Vector3d(unit(rng), unit(rng), 1.0).normalized())
             .matrix();
-    T_v_c.translation() = 0.3 * Eigen::Vector3d(unit(rng) - 0.5,
-                                                unit(rng) - 0.5, unit(rng));
+    T_v_c.translation() =
+        0.3 * Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng));
     std::map<int64_t, Eigen::Vector3d> points;
     SfmFrame frame;
     int outliers = 0;
@@ -241,14 +242,15 @@ TEST(StructureFromMotion, PnpPlacesACameraAmongGrossOutliers) {
         << "scene " << scene << ", inliers " << inliers;
     const double rotation_deg =
         Eigen::AngleAxisd(placed.linear().transpose() * T_v_c.linear())
-            .angle() * 180.0 / M_PI;
+            .angle() *
+        180.0 / M_PI;
     const double position_m =
         (placed.translation() - T_v_c.translation()).norm();
     int agreeing = 0;
     for (const auto& [id, xy] : frame.xy) {
       const Eigen::Vector3d p_c = placed.inverse() * points.at(id);
-      if (p_c.z() > 0.0 && f * (p_c.hnormalized() - xy).norm() <=
-                               o.pnp_threshold_px) {
+      if (p_c.z() > 0.0 &&
+          f * (p_c.hnormalized() - xy).norm() <= o.pnp_threshold_px) {
         ++agreeing;
       }
     }
