@@ -102,9 +102,10 @@ InitAttempt StereoInitializer::TryInitialize(
   visual.T_v_c.assign(selected.size(), Eigen::Isometry3d::Identity());
   for (size_t k = 1; k < selected.size(); ++k) {
     int inliers = 0;
+    // No guess: OpenCV's would fail on outlier sightings (PlaceCameraByPnp).
     if (!PlaceCameraByPnp(CameraFeatures(frames[selected[k]], 0),
-                          visual.points_v, visual.T_v_c[k - 1], pnp,
-                          &visual.T_v_c[k], &inliers)) {
+                          visual.points_v, nullptr, pnp, &visual.T_v_c[k],
+                          &inliers)) {
       return failed(InitFailure::kPnpFailed, inliers, s.min_pnp_inliers);
     }
     AddStereoPoints(frames[selected[k]], visual.T_v_c[k], T_c0_c1_,

@@ -128,7 +128,7 @@ void TriangulateMore(const std::vector<SfmFrame>& frames,
 
 bool PlaceCameraByPnp(const SfmFrame& frame,
                       const std::map<int64_t, Eigen::Vector3d>& points,
-                      const Eigen::Isometry3d& guess, const SfmOptions& options,
+                      const Eigen::Isometry3d* guess, const SfmOptions& options,
                       Eigen::Isometry3d* T_v_c, int* inliers_out) {
   std::vector<cv::Point3d> object;
   std::vector<cv::Point2d> image;
@@ -140,21 +140,59 @@ bool PlaceCameraByPnp(const SfmFrame& frame,
   }
   *inliers_out = 0;
   if (static_cast<int>(object.size()) < options.min_pnp_inliers) return false;
-  // The guess as OpenCV's object-to-camera transform T_c_v.
-  const Eigen::Isometry3d T_c_v = guess.inverse();
-  const Eigen::AngleAxisd aa(T_c_v.linear());
-  const Eigen::Vector3d r = aa.angle() * aa.axis();
-  cv::Mat rvec = (cv::Mat_<double>(3, 1) << r.x(), r.y(), r.z());
-  cv::Mat tvec = (cv::Mat_<double>(3, 1) << T_c_v.translation().x(),
-                  T_c_v.translation().y(), T_c_v.translation().z());
-  std::vector<int> inliers;
-  const bool ok = cv::solvePnPRansac(
-      object, image, Identity3(), cv::noArray(), rvec, tvec,
-      /*useExtrinsicGuess=*/true, /*iterationsCount=*/100,
-      static_cast<float>(options.pnp_threshold_px / options.focal_px), 0.99,
-      inliers, cv::SOLVEPNP_ITERATIVE);
-  *inliers_out = static_cast<int>(inliers.size());
-  if (!ok || *inliers_out < options.min_pnp_inliers) return false;
+  const double threshold = options.pnp_threshold_px / options.focal_px;
+  cv::Mat rvec, tvec;
+  if (guess != nullptr) {
+    // The guess as OpenCV's object-to-camera transform T_c_v.
+    const Eigen::Isometry3d T_c_v = guess->inverse();
+    const Eigen::AngleAxisd aa(T_c_v.linear());
+    const Eigen::Vector3d r = aa.angle() * aa.axis();
+    rvec = (cv::Mat_<double>(3, 1) << r.x(), r.y(), r.z());
+    tvec = (cv::Mat_<double>(3, 1) << T_c_v.translation().x(),
+            T_c_v.translation().y(), T_c_v.translation().z());
+  }
+  std::vector<int> ransac_inliers;
+  const bool ok =
+      cv::solvePnPRansac(object, image, Identity3(), cv::noArray(), rvec, tvec,
+                         /*useExtrinsicGuess=*/guess != nullptr,
+                         /*iterationsCount=*/100, static_cast<float>(threshold),
+                         0.99, ransac_inliers, cv::SOLVEPNP_ITERATIVE);
+  *inliers_out = static_cast<int>(ransac_inliers.size());
+  if (!ok) return false;
+  if (guess == nullptr) {
+    // RANSAC counts its inliers against its best sample's model, not
+    // against the pose it returns: count them again against that pose, and
+    // refine it on them (Levenberg-Marquardt on the reprojection error).
+    auto agreeing = [&](std::vector<cv::Point3d>* o,
+                        std::vector<cv::Point2d>* i) {
+      std::vector<cv::Point2d> projected;
+      cv::projectPoints(object, rvec, tvec, Identity3(), cv::noArray(),
+                        projected);
+      cv::Mat R;
+      cv::Rodrigues(rvec, R);
+      const cv::Matx33d Rm(R);
+      const cv::Vec3d t(tvec);
+      for (size_t k = 0; k < object.size(); ++k) {
+        const cv::Vec3d p_c = Rm * cv::Vec3d(object[k]) + t;
+        if (p_c[2] > 0.0 && cv::norm(projected[k] - image[k]) <= threshold) {
+          o->push_back(object[k]);
+          i->push_back(image[k]);
+        }
+      }
+    };
+    std::vector<cv::Point3d> object_in;
+    std::vector<cv::Point2d> image_in;
+    agreeing(&object_in, &image_in);
+    if (static_cast<int>(object_in.size()) >= options.min_pnp_inliers) {
+      cv::solvePnPRefineLM(object_in, image_in, Identity3(), cv::noArray(),
+                           rvec, tvec);
+      object_in.clear();
+      image_in.clear();
+      agreeing(&object_in, &image_in);
+    }
+    *inliers_out = static_cast<int>(object_in.size());
+  }
+  if (*inliers_out < options.min_pnp_inliers) return false;
   const Eigen::Vector3d rv(rvec.at<double>(0), rvec.at<double>(1),
                            rvec.at<double>(2));
   Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
@@ -338,7 +376,9 @@ SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
   for (int k : order) {
     // Frame k + 1 is placed already, whichever side of l k lies on.
     int pnp_inliers = 0;
-    if (!PlaceCameraByPnp(frames[k], points, T_v_c[k + 1], options, &T_v_c[k],
+    // With the neighbour's pose as OpenCV's guess, as the mono start's
+    // figures and tests were measured (PlaceCameraByPnp).
+    if (!PlaceCameraByPnp(frames[k], points, &T_v_c[k + 1], options, &T_v_c[k],
                           &pnp_inliers)) {
       result.failure = InitFailure::kPnpFailed;
       result.value = pnp_inliers;

@@ -349,15 +349,18 @@ TEST(EstimatorStart, StereoStartInMotionWithinHalfASecond) {
 // these trials started tens of percent off in scale on init_benchmark before
 // the outlier rounds of the start's joint adjustment
 // (init.stereo.refine_outlier_rounds; docs/initialisation.md, "The stereo
-// start with outliers"). Here they start +0.5, -0.1 and +3.2 % off; with the
-// rounds set to 0, seed 1008 started +29.4 % off and seed 1010 not within
-// the 1 s. A start may be refused and retried; the one accepted must keep
-// its scale.
+// start with outliers"); with the rounds set to 0, seed 1008 started +29.4 %
+// off and seed 1010 not within the 1 s. Seeds 1007 and 1010 then started
+// only after 0.65 and 0.75 s: their first attempts were refused with
+// rotation misfits of 1.5-96 deg, the chained PnP placing frames tens of
+// degrees off (OpenCV's RANSAC refining from its last sample; estimator/
+// structure_from_motion.cc, PlaceCameraByPnp). Each now starts by 0.5 s and
+// within 5 % of the true scale.
 TEST(EstimatorStart, StereoStartWithOutliersKeepsItsScale) {
   const struct {
     uint32_t seed;
     double phase_s;
-  } trials[] = {{1008, 9.0}, {1010, 10.5}, {1015, 14.25}};
+  } trials[] = {{1007, 8.25}, {1008, 9.0}, {1010, 10.5}, {1015, 14.25}};
   for (const auto& trial : trials) {
     SimulatorOptions o = Preset("motion_stereo", 1.0);
     o.camera.outlier_fraction = 0.05;
@@ -368,7 +371,8 @@ TEST(EstimatorStart, StereoStartWithOutliersKeepsItsScale) {
         testing::ReplaySimulation(sim, testing::OptionsFor(o));
     ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
     const StartCheck c = CheckFirstStart(sim, run);
-    EXPECT_LT(std::abs(c.scale_error), 0.1) << "seed " << trial.seed;
+    EXPECT_LE(c.time_s, 0.5) << "seed " << trial.seed;
+    EXPECT_LT(std::abs(c.scale_error), 0.05) << "seed " << trial.seed;
     std::printf("seed %u: start after %.2f s, scale %+.1f %%\n", trial.seed,
                 c.time_s, 100.0 * c.scale_error);
   }

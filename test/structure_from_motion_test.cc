@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <random>
 
 #include "dataset/simulator.h"
 #include "frontend/observation_builder.h"
@@ -189,6 +191,74 @@ TEST(StructureFromMotion, RotationCompensatedParallaxOfARotationIsZero) {
                .hnormalized();
   }
   EXPECT_GT(RotationCompensatedParallax(a, b), 0.01);
+}
+
+// Points 2-8 m in front, 1 px of noise, and 15 % of the sightings gross
+// outliers uniform over a 752 x 480 image, as camera.outlier_fraction makes
+// them: the camera is placed within 0.5 deg and 5 cm, and the inliers it
+// reports agree with the pose it returns. Placed with OpenCV's extrinsic
+// guess (its final refinement then starts from RANSAC's last sample, not its
+// best) and its inliers taken as reported, 3 of these 20 scenes came out
+// 50-108 deg and 3.7-5.6 m off, none of the 108-119 inliers it reported
+// agreeing with that pose (docs/initialisation.md, "The stereo start with
+// outliers").
+TEST(StructureFromMotion, PnpPlacesACameraAmongGrossOutliers) {
+  const double f = 458.0;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 1.0 / f);
+  for (int scene = 0; scene < 20; ++scene) {
+    // The camera 0.3 m and a few degrees from the points' frame v.
+    Eigen::Isometry3d T_v_c = Eigen::Isometry3d::Identity();
+    T_v_c.linear() =
+        Eigen::AngleAxisd(
+            0.1 * (unit(rng) - 0.5),
+            Eigen::Vector3d(unit(rng), unit(rng), 1.0).normalized())
+            .matrix();
+    T_v_c.translation() =
+        0.3 * Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng));
+    std::map<int64_t, Eigen::Vector3d> points;
+    SfmFrame frame;
+    int outliers = 0;
+    for (int64_t id = 0; id < 140; ++id) {
+      const Eigen::Vector2d xy((unit(rng) - 0.5) * 752.0 / f,
+                               (unit(rng) - 0.5) * 480.0 / f);
+      const double depth = 2.0 + 6.0 * unit(rng);
+      const Eigen::Vector3d p_c = depth * xy.homogeneous();
+      points[id] = T_v_c * p_c;
+      if (unit(rng) < 0.15) {
+        frame.xy[id] = Eigen::Vector2d((unit(rng) - 0.5) * 752.0 / f,
+                                       (unit(rng) - 0.5) * 480.0 / f);
+        ++outliers;
+      } else {
+        frame.xy[id] = xy + Eigen::Vector2d(noise(rng), noise(rng));
+      }
+    }
+    SfmOptions o;
+    o.focal_px = f;
+    Eigen::Isometry3d placed = Eigen::Isometry3d::Identity();
+    int inliers = 0;
+    ASSERT_TRUE(PlaceCameraByPnp(frame, points, nullptr, o, &placed, &inliers))
+        << "scene " << scene << ", inliers " << inliers;
+    const double rotation_deg =
+        Eigen::AngleAxisd(placed.linear().transpose() * T_v_c.linear())
+            .angle() *
+        180.0 / M_PI;
+    const double position_m =
+        (placed.translation() - T_v_c.translation()).norm();
+    int agreeing = 0;
+    for (const auto& [id, xy] : frame.xy) {
+      const Eigen::Vector3d p_c = placed.inverse() * points.at(id);
+      if (p_c.z() > 0.0 &&
+          f * (p_c.hnormalized() - xy).norm() <= o.pnp_threshold_px) {
+        ++agreeing;
+      }
+    }
+    EXPECT_LT(rotation_deg, 0.5) << "scene " << scene;
+    EXPECT_LT(position_m, 0.05) << "scene " << scene;
+    EXPECT_GE(agreeing, inliers) << "scene " << scene;
+    EXPECT_GE(inliers, 140 - outliers - 10) << "scene " << scene;
+  }
 }
 
 TEST(StructureFromMotion, TooFewFramesOrCorrespondencesFail) {

@@ -148,6 +148,10 @@ struct Trial {
   double own_sigma = -1.0;         // the initialiser's own (before it)
   double accel_bias = 0.0;         // |b_a - b_a true| at the newest frame
   double initial_gyro_bias = 0.0;  // the initialiser's, before the adjustment
+  // How far the joint adjustment moved the newest frame's biases from the
+  // initialiser's [rad/s, m/s^2] (no truth needed: a check could use them).
+  double gyro_bias_move = 0.0;
+  double accel_bias_move = 0.0;
   double parallax_px = 0.0;        // the start's own parallax measure
   double refine_change = 0.0;      // the joint adjustment's path change
   int refine_outliers = 0;         // sightings its outlier rounds removed
@@ -247,6 +251,8 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   t.own_sigma = start.diagnostics.scale_uncertainty;
   t.accel_bias = (newest.b_a - gt.b_a).norm();
   t.initial_gyro_bias = (start.diagnostics.initial_b_g - gt.b_g).norm();
+  t.gyro_bias_move = (newest.b_g - start.diagnostics.initial_b_g).norm();
+  t.accel_bias_move = (newest.b_a - start.diagnostics.initial_b_a).norm();
   t.parallax_px = start.diagnostics.parallax_px;
   t.refine_change = start.diagnostics.refine_scale_change;
   t.refine_outliers = start.diagnostics.refine_outliers_removed;
@@ -282,12 +288,12 @@ void StartFigures(const std::string& preset, const Args& args) {
             "gravity %.3f deg, b_g %.5f (initialiser's %.5f), b_a %.3f, "
             "predicted scale sigma %.2f %% (initialiser's own %.2f %%), "
             "parallax %.2f px, adjustment's path change %+.2f %%, "
-            "outliers removed %d",
+            "outliers removed %d, the adjustment moved b_g %.5f, b_a %.3f",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
             100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
             t.initial_gyro_bias, t.accel_bias, 100 * t.scale_sigma,
             100 * t.own_sigma, t.parallax_px, 100 * t.refine_change,
-            t.refine_outliers);
+            t.refine_outliers, t.gyro_bias_move, t.accel_bias_move);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }
