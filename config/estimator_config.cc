@@ -129,6 +129,8 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
                       "(got '" +
                       reanchored + "')");
   }
+  o->landmarks.world_points_in_max_landmarks =
+      l.Get<bool>("world_points_in_max_landmarks");
   const YamlNode s = e.Child("static_init");
   o->static_init.window_s = s.Get<double>("window_s");
   o->static_init.block_s = s.Get<double>("block_s");
@@ -189,7 +191,11 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << "  landmarks: outlier RMS > " << o.landmarks.outlier_threshold_px
       << " px, at most " << o.landmarks.max_landmarks
       << ", re-anchored tracks: "
-      << ReanchoredTracksName(o.landmarks.reanchored_tracks) << "\n"
+      << ReanchoredTracksName(o.landmarks.reanchored_tracks)
+      << (o.landmarks.world_points_in_max_landmarks
+              ? ""
+              : " (world points on top of the maximum)")
+      << "\n"
       << "  solver: "
       << (o.solver.backend == SolverBackend::kWindow
               ? std::string("window (inverse depths eliminated)")

@@ -73,6 +73,12 @@ struct LandmarkOptions {
   // What happens to the landmarks anchored in a keyframe that is
   // marginalised.
   ReanchoredTracks reanchored_tracks = ReanchoredTracks::kReuse;
+  // keep_point: whether the world points take places of max_landmarks.
+  // They are always in the problem (the prior holds them), so when they
+  // count, long old tracks crowd out new landmarks (with stereo's 60, most
+  // places); false puts them on top of max_landmarks inverse-depth
+  // landmarks (docs/recorded_flights.md, "A keep_point variant").
+  bool world_points_in_max_landmarks = true;
 };
 
 // Static start: the IMU tells when the vehicle stands still.

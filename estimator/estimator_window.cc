@@ -102,6 +102,7 @@ WindowProblemSettings Estimator::ProblemSettings() const {
       options_.landmarks.reanchored_tracks != ReanchoredTracks::kReuse;
   s.point_first_estimates = options_.landmarks.reanchored_tracks ==
                             ReanchoredTracks::kKeepPointFirstEstimate;
+  s.points_in_max_landmarks = options_.landmarks.world_points_in_max_landmarks;
   return s;
 }
 

@@ -130,7 +130,10 @@ void WindowProblem::AddFrameLink(std::unique_ptr<ceres::CostFunction> cost,
 
 int WindowProblem::AddVisualFactors() {
   const int points = settings_.keep_points ? AddWorldPoints() : 0;
-  const int max_landmarks = std::max(0, settings_.max_landmarks - points);
+  const int max_landmarks =
+      settings_.points_in_max_landmarks
+          ? std::max(0, settings_.max_landmarks - points)
+          : settings_.max_landmarks;
   // Candidates: triangulated, anchored in the window, seen again later.
   std::vector<Landmark*> candidates;
   for (auto& [id, l] : features_->landmarks()) {

@@ -29,7 +29,8 @@
 // landmark (feature_manager.h) has one WorldPointReprojectionFactor per
 // sighting, blocks pose_j, T_b_c, p_w; its p_w is a block of the dense
 // (not eliminated) system, as the prior may hold it. Its factors come first
-// and are always in the problem (they count against max_landmarks). The
+// and are always in the problem (they count against max_landmarks unless
+// points_in_max_landmarks is false). The
 // marginalisation of the oldest frame then folds only that frame's
 // sightings of a track that goes on: see OldestFrameMarginalization
 // (window_problem_points.cc).
@@ -71,6 +72,9 @@ struct WindowProblemSettings {
   // keep_points: the world-point factors' Jacobians at the point's first
   // estimate (Landmark::p_w_first, factors/world_point_factor.h).
   bool point_first_estimates = false;
+  // keep_points: the world points take places of max_landmarks
+  // (LandmarkOptions::world_points_in_max_landmarks).
+  bool points_in_max_landmarks = true;
 };
 
 // What the outlier test found.

@@ -50,6 +50,8 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.landmarks.outlier_threshold_px, d.landmarks.outlier_threshold_px);
   EXPECT_EQ(o.landmarks.max_landmarks, d.landmarks.max_landmarks);
   EXPECT_EQ(o.landmarks.reanchored_tracks, d.landmarks.reanchored_tracks);
+  EXPECT_EQ(o.landmarks.world_points_in_max_landmarks,
+            d.landmarks.world_points_in_max_landmarks);
   EXPECT_EQ(o.static_init.max_acc_std, d.static_init.max_acc_std);
   EXPECT_EQ(o.state_prior.tilt_rad, d.state_prior.tilt_rad);
   EXPECT_EQ(o.failure.max_position_jump_m, d.failure.max_position_jump_m);
@@ -142,6 +144,10 @@ TEST(EstimatorConfig, ErrorsNameFileAndKey) {
             "test.yaml: estimator.window_size must be >= 2 (got 1)");
   EXPECT_EQ(ErrorOf(Replace(text, "    max_landmarks: 120", "")),
             "test.yaml: estimator.landmarks.max_landmarks is missing");
+  EXPECT_EQ(ErrorOf(Replace(text, "    world_points_in_max_landmarks: true",
+                            "")),
+            "test.yaml: estimator.landmarks.world_points_in_max_landmarks is "
+            "missing");
   EXPECT_EQ(ErrorOf(Replace(text, "linear_solver: dense_schur",
                             "linear_solver: cholmod")),
             "test.yaml: estimator.solver.linear_solver must be a Ceres "

@@ -17,19 +17,22 @@ using testing::ReplaySimulation;
 using testing::SimReplay;
 
 SimReplay ReplayWith(bool stereo, ReanchoredTracks mode,
-                     double outlier_fraction = 0.0) {
+                     double outlier_fraction = 0.0,
+                     bool points_in_max_landmarks = true) {
   SimulatorOptions sim = testing::ShortSimulation(12.0, stereo);
   sim.camera.outlier_fraction = outlier_fraction;
   EstimatorOptions options = testing::OptionsFor(sim);
   options.landmarks.reanchored_tracks = mode;
+  options.landmarks.world_points_in_max_landmarks = points_in_max_landmarks;
   const SimReplay r = ReplaySimulation(Simulate(sim), options);
   std::printf(
       "%s %s: ATE %.6f m, %lld marginalisations (%lld failed), "
-      "%lld releases\n",
+      "%lld releases, at most %.0f landmarks a step\n",
       stereo ? "stereo" : "mono", ReanchoredTracksName(mode), r.ate_rmse_m,
       static_cast<long long>(r.summary.marginalizations),
       static_cast<long long>(r.summary.marginalization_failures),
-      static_cast<long long>(r.summary.points_released));
+      static_cast<long long>(r.summary.points_released),
+      r.summary.landmarks_per_step.Quantile(1.0));
   return r;
 }
 
@@ -48,6 +51,20 @@ TEST(EstimatorKeepPoint, StereoTracksWithEveryMarginalizationSucceeding) {
       ReplayWith(true, ReanchoredTracks::kKeepPointFirstEstimate);
   EXPECT_EQ(fej.summary.resets, 0);
   EXPECT_GT(fej.summary.marginalizations, 20);
+  EXPECT_EQ(fej.summary.marginalization_failures, 0);
+  EXPECT_LT(fej.ate_rmse_m, 0.02);
+}
+
+TEST(EstimatorKeepPoint, StereoPointsOnTopOfMaxLandmarks) {
+  // world_points_in_max_landmarks false: the world points come on top of
+  // max_landmarks inverse-depth landmarks, so a step holds more than it.
+  const SimReplay fej =
+      ReplayWith(true, ReanchoredTracks::kKeepPointFirstEstimate, 0.0, false);
+  const int max_landmarks =
+      testing::OptionsFor(testing::ShortSimulation(12.0, true))
+          .landmarks.max_landmarks;
+  EXPECT_GT(fej.summary.landmarks_per_step.Quantile(1.0), max_landmarks);
+  EXPECT_EQ(fej.summary.resets, 0);
   EXPECT_EQ(fej.summary.marginalization_failures, 0);
   EXPECT_LT(fej.ate_rmse_m, 0.02);
 }

@@ -128,6 +128,32 @@ TEST_F(KeepPoint, FoldsEachSightingOnceAndKeepsThePoint) {
   EXPECT_TRUE(features_.landmarks().empty());
 }
 
+TEST_F(KeepPoint, WorldPointsTakePlacesOfMaxLandmarksUnlessOnTop) {
+  SlideOldest(true);  // kId: a world point seen in frames 1 and 2
+  ASSERT_TRUE(features_.landmarks().at(kId).world_point);
+  // A second track, anchored in frame 1 and seen again in frame 2.
+  constexpr int64_t kOther = 8;
+  Landmark& other = features_.landmarks()[kOther];
+  other.feature_id = kOther;
+  for (int64_t id : {1, 2}) {
+    const Eigen::Vector3d p_c = point_ - Eigen::Vector3d(id, 0.5, 0);
+    other.sightings.push_back(
+        {id, 0, p_c.head<2>() / p_c.z(), Eigen::Vector2d::Zero()});
+  }
+  other.triangulated = true;
+  other.inverse_depth = 1.0 / point_.z();
+  for (const bool in_max : {true, false}) {
+    SCOPED_TRACE(in_max);
+    WindowProblemSettings s = Settings(true);
+    s.max_landmarks = 1;
+    s.points_in_max_landmarks = in_max;
+    WindowProblem problem(&window_, &features_, s);
+    // Counted, the point fills the one place; on top, both are in.
+    EXPECT_EQ(problem.AddVisualFactors(), in_max ? 1 : 2);
+    EXPECT_EQ(problem.num_visual_residuals(), in_max ? 2 : 3);
+  }
+}
+
 TEST_F(KeepPoint, ARemovedWorldPointBecomesAnOrphanNotAHole) {
   SlideOldest(true);
   ASSERT_TRUE(features_.landmarks().at(kId).world_point);
