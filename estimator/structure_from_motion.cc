@@ -377,7 +377,11 @@ SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
     // Frame k + 1 is placed already, whichever side of l k lies on.
     int pnp_inliers = 0;
     // With the neighbour's pose as OpenCV's guess, as the mono start's
-    // figures and tests were measured (PlaceCameraByPnp).
+    // figures and tests were measured (PlaceCameraByPnp). With 5 % outlier
+    // sightings the guess places some frames with no point agreeing, but the
+    // mono start is refused then by the bundle adjustment's RMS over every
+    // sighting, outliers included, with or without the guess
+    // (docs/initialisation.md, "The mono start in motion with outliers").
     if (!PlaceCameraByPnp(frames[k], points, &T_v_c[k + 1], options, &T_v_c[k],
                           &pnp_inliers)) {
       result.failure = InitFailure::kPnpFailed;

@@ -80,8 +80,10 @@ SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
 //     start with outliers"). Kept for the mono start, whose figures and tests
 //     were measured with it: without the guess two of its tests' single
 //     trials moved past their bounds and motion_mono's worst start scale went
-//     from 28.5 to 34.6 %. A mono start in motion on data with outlier
-//     sightings was not measured with either.
+//     from 28.5 to 34.6 %. With 5 % outlier sightings the guess fails in
+//     mono too, but every mono start is then refused by the SfM's
+//     reprojection RMS with it or without (docs/initialisation.md, "The mono
+//     start in motion with outliers").
 bool PlaceCameraByPnp(const SfmFrame& frame,
                       const std::map<int64_t, Eigen::Vector3d>& points,
                       const Eigen::Isometry3d* guess, const SfmOptions& options,
