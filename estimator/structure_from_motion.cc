@@ -163,18 +163,19 @@ bool PlaceCameraByPnp(const SfmFrame& frame,
     // RANSAC counts its inliers against its best sample's model, not
     // against the pose it returns: count them again against that pose, and
     // refine it on them (Levenberg-Marquardt on the reprojection error).
+    // The image points are normalised (identity intrinsics): a point's
+    // projection is its camera coordinates over depth.
     auto agreeing = [&](std::vector<cv::Point3d>* o,
                         std::vector<cv::Point2d>* i) {
-      std::vector<cv::Point2d> projected;
-      cv::projectPoints(object, rvec, tvec, Identity3(), cv::noArray(),
-                        projected);
       cv::Mat R;
       cv::Rodrigues(rvec, R);
       const cv::Matx33d Rm(R);
       const cv::Vec3d t(tvec);
       for (size_t k = 0; k < object.size(); ++k) {
         const cv::Vec3d p_c = Rm * cv::Vec3d(object[k]) + t;
-        if (p_c[2] > 0.0 && cv::norm(projected[k] - image[k]) <= threshold) {
+        if (p_c[2] <= 0.0) continue;
+        const cv::Point2d projected(p_c[0] / p_c[2], p_c[1] / p_c[2]);
+        if (cv::norm(projected - image[k]) <= threshold) {
           o->push_back(object[k]);
           i->push_back(image[k]);
         }
