@@ -386,8 +386,9 @@ TEST(EstimatorStart, StereoStartWithOutliersKeepsItsScale) {
 // --preset motion_stereo_out5, --seeds 40 and --first-seed 1020 --seeds 40).
 // The sightings off by more than init.stereo.refine_prescreen_threshold_px
 // at the alignment's state are now removed before that solve
-// (docs/initialisation.md, "The first solve with outliers"); with that
-// removal skipped, these trials end +6.03, +3.78 and -20.97 % off again.
+// (docs/initialisation.md, "The first solve with outliers: gross outliers
+// out before it"); with that removal skipped, these trials end +6.03,
+// +3.78 and -20.97 % off again.
 TEST(EstimatorStart, StereoStartRemovesGrossOutliersBeforeItsFirstSolve) {
   const struct {
     uint32_t seed;
