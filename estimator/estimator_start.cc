@@ -261,9 +261,8 @@ InitFailure Estimator::RefineStart(InitMethod method,
     const OutlierReport gross =
         problem->Outliers(stereo.refine_prescreen_threshold_px);
     if (gross.empty()) break;
-    diagnostics->refine_prescreen_removed +=
-        static_cast<int>(gross.landmarks.size() + gross.behind.size() +
-                         gross.sightings.size());
+    diagnostics->refine_prescreen_removed += static_cast<int>(
+        gross.landmarks.size() + gross.behind.size() + gross.sightings.size());
     if (!remove(gross)) return InitFailure::kRefinementFailed;
   }
   solve(problem.get());
