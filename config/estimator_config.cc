@@ -91,6 +91,8 @@ void ReadInit(const YamlNode& n, InitOptions* o) {
   o->stereo.refine_outlier_rounds = s.Get<int>("refine_outlier_rounds");
   o->stereo.refine_outlier_threshold_px =
       s.Get<double>("refine_outlier_threshold_px");
+  o->stereo.refine_prescreen_threshold_px =
+      s.Get<double>("refine_prescreen_threshold_px");
   o->stereo.max_refine_scale_change =
       s.Get<double>("max_refine_scale_change");
 }

@@ -233,17 +233,15 @@ InitFailure Estimator::RefineStart(InitMethod method,
   std::unique_ptr<WindowProblem> problem = make_problem();
   if (!problem) return InitFailure::kRefinementFailed;
   const double path_before = PathLength(window_);
-  solve(problem.get());
   // A stereo start's landmarks include mismatched pairs and outlier
   // sightings, which the robust kernel bounds but does not remove: out with
-  // them (as a step's slide would) and solved again, before it is judged.
+  // them (as a step's slide would), before the start is judged.
+  const StereoInitOptions& stereo = options_.init.stereo;
   const int rounds =
-      method == InitMethod::kStereo ? options_.init.stereo.refine_outlier_rounds
-                                    : 0;
-  for (int round = 0; round < rounds; ++round) {
-    const OutlierReport outliers =
-        problem->Outliers(options_.init.stereo.refine_outlier_threshold_px);
-    if (outliers.empty()) break;
+      method == InitMethod::kStereo ? stereo.refine_outlier_rounds : 0;
+  // Removes what `outliers` lists and builds the problem again; false when
+  // it cannot be built.
+  auto remove = [&](const OutlierReport& outliers) {
     problem.reset();
     outliers.RemoveFrom(&features_);
     diagnostics->refine_outliers_removed +=
@@ -253,7 +251,26 @@ InitFailure Estimator::RefineStart(InitMethod method,
     summary_.landmarks_triangulated +=
         features_.TriangulateNew(PoseFn(), options_.triangulation);
     problem = make_problem();
-    if (!problem) return InitFailure::kRefinementFailed;
+    return problem != nullptr;
+  };
+  // First the gross ones, at the alignment's state: solved with them in,
+  // the window ran to several times its scale, and the rounds below, judging
+  // every sighting against that state, then removed good ones with the bad.
+  for (int pass = 0; pass < rounds && stereo.refine_prescreen_threshold_px > 0;
+       ++pass) {
+    const OutlierReport gross =
+        problem->Outliers(stereo.refine_prescreen_threshold_px);
+    if (gross.empty()) break;
+    diagnostics->refine_prescreen_removed += static_cast<int>(
+        gross.landmarks.size() + gross.behind.size() + gross.sightings.size());
+    if (!remove(gross)) return InitFailure::kRefinementFailed;
+  }
+  solve(problem.get());
+  for (int round = 0; round < rounds; ++round) {
+    const OutlierReport outliers =
+        problem->Outliers(stereo.refine_outlier_threshold_px);
+    if (outliers.empty()) break;
+    if (!remove(outliers)) return InitFailure::kRefinementFailed;
     solve(problem.get());
   }
   // The failure rules of a step, against the alignment's newest state.

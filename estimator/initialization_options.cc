@@ -76,6 +76,8 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
             0);
   r.Positive("init.stereo.refine_outlier_threshold_px",
              stereo.refine_outlier_threshold_px);
+  r.AtLeast("init.stereo.refine_prescreen_threshold_px",
+            stereo.refine_prescreen_threshold_px, 0.0);
   r.Positive("init.stereo.max_refine_scale_change",
              stereo.max_refine_scale_change);
   r.Positive("init.max_rotation_misfit_deg", max_rotation_misfit_deg);

@@ -102,6 +102,8 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
             d.init.stereo.refine_outlier_rounds);
   EXPECT_EQ(o.init.stereo.refine_outlier_threshold_px,
             d.init.stereo.refine_outlier_threshold_px);
+  EXPECT_EQ(o.init.stereo.refine_prescreen_threshold_px,
+            d.init.stereo.refine_prescreen_threshold_px);
   EXPECT_EQ(o.init.stereo.max_refine_scale_change,
             d.init.stereo.max_refine_scale_change);
   const ZeroVelocityOptions& z = o.zero_velocity;

@@ -25,17 +25,25 @@
 // min(N, --seeds) sequences per preset instead of 5; --ate-only skips the
 // start figures.
 //
+// --first-seed N: the trials' seeds are N, N+1, ... (default 1000; the start
+// phases stay spread over the lap whatever N), so that a limit chosen on one
+// set of seeds can be validated on a disjoint one. --drop-outliers (a
+// diagnosis with the simulator's knowledge): the outlier sightings
+// (camera.outlier_fraction) are left out instead of fed, the same draws
+// otherwise.
+//
 // --diagnose prints, per frame until the start, the mono start's verdict and
 // the pairs it could take (init_diagnosis.h). --stereo-span and
 // --stereo-window override init.stereo's min_span_s and window_s,
-// --stereo-outlier-rounds, --stereo-outlier-px and --stereo-max-change its
-// refine_outlier_rounds, refine_outlier_threshold_px and
-// max_refine_scale_change;
+// --stereo-outlier-rounds, --stereo-outlier-px, --stereo-prescreen-px and
+// --stereo-max-change its refine_outlier_rounds, refine_outlier_threshold_px,
+// refine_prescreen_threshold_px and max_refine_scale_change;
 // --min-parallax,
 // --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
 // init.mono's options, to measure them.
 //
-//   init_benchmark [--preset NAME]... [--seeds N] [--seconds S] [--ate]
+//   init_benchmark [--preset NAME]... [--seeds N] [--first-seed N]
+//                  [--drop-outliers] [--seconds S] [--ate]
 //                  [--verbose] [--diagnose] [--long-window S]
 //                  [--max-scale-sigma X] [--min-parallax PX]
 //                  [--min-correspondences N] [--gyro-aided 0|1]
@@ -43,7 +51,7 @@
 //                  [--against-default] [--gyro-min-parallax PX]
 //                  [--attempts] [--stereo-span S] [--stereo-window S]
 //                  [--stereo-outlier-rounds N] [--stereo-outlier-px PX]
-//                  [--stereo-max-change X]
+//                  [--stereo-prescreen-px PX] [--stereo-max-change X]
 //                  [--ate-from S]... [--ate-runs N] [--ate-separate]
 //                  [--cut S] [--ate-only]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
@@ -155,6 +163,7 @@ struct Trial {
   double parallax_px = 0.0;        // the start's own parallax measure
   double refine_change = 0.0;      // the joint adjustment's path change
   int refine_outliers = 0;         // sightings its outlier rounds removed
+  int prescreened = 0;             // of those, before its first solve
   InitMethod method = InitMethod::kAuto;
   std::string failures;
   // The running estimate's gravity direction error at kLaterTimes after the
@@ -177,7 +186,18 @@ double GravityErrorDeg(const Eigen::Quaterniond& q_est,
 
 Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   const Simulation sim = Simulate(sim_options);
-  const testing::PreparedSimulation prepared = testing::Prepare(sim);
+  std::vector<FeatureFrame> frames = sim.frames;
+  if (args.drop_outliers) {
+    for (size_t i = 0; i < frames.size() && i < sim.is_outlier.size(); ++i) {
+      std::vector<FeatureObservation> kept;
+      for (size_t j = 0; j < frames[i].observations.size(); ++j) {
+        if (!sim.is_outlier[i][j]) kept.push_back(frames[i].observations[j]);
+      }
+      frames[i].observations = std::move(kept);
+    }
+  }
+  const testing::PreparedSimulation prepared =
+      testing::Prepare(sim, std::move(frames));
   const EstimatorOptions options = OptionsOf(sim_options, args);
   Estimator estimator(options, VisualFactorOptions(), sim_options.imu.noise,
                       PreintegrationOptions(), prepared.cameras);
@@ -256,6 +276,7 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   t.parallax_px = start.diagnostics.parallax_px;
   t.refine_change = start.diagnostics.refine_scale_change;
   t.refine_outliers = start.diagnostics.refine_outliers_removed;
+  t.prescreened = start.diagnostics.refine_prescreen_removed;
   if (!summary.init_attempts.empty()) {
     t.failures = DescribeInitFailures(summary.init_attempts);
   }
@@ -273,7 +294,7 @@ void StartFigures(const std::string& preset, const Args& args) {
   int started = 0, within = 0;
   for (int k = 0; k < args.seeds; ++k) {
     SimulatorOptions o = base;
-    o.seed = static_cast<uint32_t>(1000 + k);
+    o.seed = static_cast<uint32_t>(args.first_seed + k);
     // Start phases spread over one lap.
     o.motion.start_phase_s =
         base.motion.start_phase_s + k * base.motion.lap_period_s / args.seeds;
@@ -288,12 +309,14 @@ void StartFigures(const std::string& preset, const Args& args) {
             "gravity %.3f deg, b_g %.5f (initialiser's %.5f), b_a %.3f, "
             "predicted scale sigma %.2f %% (initialiser's own %.2f %%), "
             "parallax %.2f px, adjustment's path change %+.2f %%, "
-            "outliers removed %d, the adjustment moved b_g %.5f, b_a %.3f",
+            "outliers removed %d (%d before its first solve), the adjustment "
+            "moved b_g %.5f, b_a %.3f",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
             100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
             t.initial_gyro_bias, t.accel_bias, 100 * t.scale_sigma,
             100 * t.own_sigma, t.parallax_px, 100 * t.refine_change,
-            t.refine_outliers, t.gyro_bias_move, t.accel_bias_move);
+            t.refine_outliers, t.prescreened, t.gyro_bias_move,
+            t.accel_bias_move);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }

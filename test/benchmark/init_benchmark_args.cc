@@ -37,6 +37,9 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   if (args.stereo_outlier_px > 0.0) {
     o.init.stereo.refine_outlier_threshold_px = args.stereo_outlier_px;
   }
+  if (args.stereo_prescreen_px >= 0.0) {
+    o.init.stereo.refine_prescreen_threshold_px = args.stereo_prescreen_px;
+  }
   if (args.stereo_max_change > 0.0) {
     o.init.stereo.max_refine_scale_change = args.stereo_max_change;
   }
@@ -55,6 +58,10 @@ Args Parse(int argc, char** argv) {
       a.presets.push_back(value());
     } else if (s == "--seeds") {
       a.seeds = std::stoi(value());
+    } else if (s == "--first-seed") {
+      a.first_seed = std::stoi(value());
+    } else if (s == "--drop-outliers") {
+      a.drop_outliers = true;
     } else if (s == "--seconds") {
       a.seconds = std::stod(value());
     } else if (s == "--ate") {
@@ -85,6 +92,8 @@ Args Parse(int argc, char** argv) {
       a.stereo_outlier_rounds = std::stoi(value());
     } else if (s == "--stereo-outlier-px") {
       a.stereo_outlier_px = std::stod(value());
+    } else if (s == "--stereo-prescreen-px") {
+      a.stereo_prescreen_px = std::stod(value());
     } else if (s == "--stereo-max-change") {
       a.stereo_max_change = std::stod(value());
     } else if (s == "--ate-runs") {

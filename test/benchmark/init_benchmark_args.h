@@ -15,6 +15,13 @@ namespace vio {
 struct Args {
   std::vector<std::string> presets;
   int seeds = 20;
+  // The first trial's seed; trial k has seed first_seed + k (its start
+  // phase k / seeds of a lap, whatever the first seed), so that one set of
+  // seeds can choose a limit and a disjoint one validate it.
+  int first_seed = 1000;
+  // --drop-outliers (a diagnosis, the truth's knowledge): the simulation's
+  // outlier sightings are left out of the frames instead of fed.
+  bool drop_outliers = false;
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
   // --against-default (implies --ate-separate): also replay in motion with
@@ -47,6 +54,7 @@ struct Args {
   int stereo_outlier_rounds = -1;
   double stereo_max_change = -1.0;
   double stereo_outlier_px = -1.0;  // refine_outlier_threshold_px
+  double stereo_prescreen_px = -1.0;  // refine_prescreen_threshold_px
   // With --ate (repeatable --ate-from S): also the ATE of both runs over
   // their frames from S seconds after the cut (--ate-separate: after the
   // first frame) on, aligned on those alone.
