@@ -50,6 +50,8 @@ struct InitDiagnostics {
   double refined_path_m = 0.0;  // the adjusted window's path length [m]
   // stereo: sightings (landmarks counted once) its outlier rounds removed.
   int refine_outliers_removed = 0;
+  // mono: sightings the structure from motion's outlier rounds removed.
+  int sfm_outliers_removed = 0;
   // Relative std of the adjusted window's scale, from the joint
   // adjustment's covariance (estimator/scale_uncertainty.h); < 0: unknown.
   double refined_scale_sigma = -1.0;

@@ -30,12 +30,16 @@
 // --stereo-window override init.stereo's min_span_s and window_s,
 // --stereo-outlier-rounds, --stereo-outlier-px and --stereo-max-change its
 // refine_outlier_rounds, refine_outlier_threshold_px and
-// max_refine_scale_change;
+// max_refine_scale_change; --mono-outlier-rounds, --mono-outlier-px and
+// --mono-max-outlier-share init.mono's outlier_rounds, outlier_threshold_px
+// and max_outlier_share; --first-seed F takes the seeds from 1000 + F (their
+// phases shifted half a step when F > 0: trials other than the first ones);
 // --min-parallax,
 // --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
 // init.mono's options, to measure them.
 //
-//   init_benchmark [--preset NAME]... [--seeds N] [--seconds S] [--ate]
+//   init_benchmark [--preset NAME]... [--seeds N] [--first-seed F]
+//                  [--seconds S] [--ate]
 //                  [--verbose] [--diagnose] [--long-window S]
 //                  [--max-scale-sigma X] [--min-parallax PX]
 //                  [--min-correspondences N] [--gyro-aided 0|1]
@@ -43,7 +47,8 @@
 //                  [--against-default] [--gyro-min-parallax PX]
 //                  [--attempts] [--stereo-span S] [--stereo-window S]
 //                  [--stereo-outlier-rounds N] [--stereo-outlier-px PX]
-//                  [--stereo-max-change X]
+//                  [--stereo-max-change X] [--mono-outlier-rounds N]
+//                  [--mono-outlier-px PX] [--mono-max-outlier-share X]
 //                  [--ate-from S]... [--ate-runs N] [--ate-separate]
 //                  [--cut S] [--ate-only]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
@@ -155,6 +160,7 @@ struct Trial {
   double parallax_px = 0.0;        // the start's own parallax measure
   double refine_change = 0.0;      // the joint adjustment's path change
   int refine_outliers = 0;         // sightings its outlier rounds removed
+  int sfm_outliers = 0;  // mono: sightings the SfM's outlier rounds removed
   InitMethod method = InitMethod::kAuto;
   std::string failures;
   // The running estimate's gravity direction error at kLaterTimes after the
@@ -256,6 +262,7 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   t.parallax_px = start.diagnostics.parallax_px;
   t.refine_change = start.diagnostics.refine_scale_change;
   t.refine_outliers = start.diagnostics.refine_outliers_removed;
+  t.sfm_outliers = start.diagnostics.sfm_outliers_removed;
   if (!summary.init_attempts.empty()) {
     t.failures = DescribeInitFailures(summary.init_attempts);
   }
@@ -273,10 +280,12 @@ void StartFigures(const std::string& preset, const Args& args) {
   int started = 0, within = 0;
   for (int k = 0; k < args.seeds; ++k) {
     SimulatorOptions o = base;
-    o.seed = static_cast<uint32_t>(1000 + k);
-    // Start phases spread over one lap.
-    o.motion.start_phase_s =
-        base.motion.start_phase_s + k * base.motion.lap_period_s / args.seeds;
+    o.seed = static_cast<uint32_t>(1000 + args.first_seed + k);
+    // Start phases spread over one lap (shifted half a step for other
+    // trials than the first ones).
+    const double step = args.first_seed > 0 ? 0.5 : 0.0;
+    o.motion.start_phase_s = base.motion.start_phase_s +
+                             (k + step) * base.motion.lap_period_s / args.seeds;
     o.duration_s = args.seconds;
     const Trial t = RunTrial(o, args);
     if (args.verbose || args.diagnose) {
@@ -288,12 +297,14 @@ void StartFigures(const std::string& preset, const Args& args) {
             "gravity %.3f deg, b_g %.5f (initialiser's %.5f), b_a %.3f, "
             "predicted scale sigma %.2f %% (initialiser's own %.2f %%), "
             "parallax %.2f px, adjustment's path change %+.2f %%, "
-            "outliers removed %d, the adjustment moved b_g %.5f, b_a %.3f",
+            "outliers removed %d, the adjustment moved b_g %.5f, b_a %.3f, "
+            "SfM outliers removed %d",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
             100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
             t.initial_gyro_bias, t.accel_bias, 100 * t.scale_sigma,
             100 * t.own_sigma, t.parallax_px, 100 * t.refine_change,
-            t.refine_outliers, t.gyro_bias_move, t.accel_bias_move);
+            t.refine_outliers, t.gyro_bias_move, t.accel_bias_move,
+            t.sfm_outliers);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }

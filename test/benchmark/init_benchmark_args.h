@@ -15,6 +15,10 @@ namespace vio {
 struct Args {
   std::vector<std::string> presets;
   int seeds = 20;
+  // --first-seed F: seeds 1000 + F on, their start phases shifted half a
+  // step when F > 0, so that a threshold chosen on the first trials can be
+  // checked on others.
+  int first_seed = 0;
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
   // --against-default (implies --ate-separate): also replay in motion with
@@ -47,6 +51,11 @@ struct Args {
   int stereo_outlier_rounds = -1;
   double stereo_max_change = -1.0;
   double stereo_outlier_px = -1.0;  // refine_outlier_threshold_px
+  // init.mono.outlier_rounds, outlier_threshold_px, max_outlier_share (< 0:
+  // the defaults).
+  int mono_outlier_rounds = -1;
+  double mono_outlier_px = -1.0;
+  double mono_max_outlier_share = -1.0;
   // With --ate (repeatable --ate-from S): also the ATE of both runs over
   // their frames from S seconds after the cut (--ate-separate: after the
   // first frame) on, aligned on those alone.
