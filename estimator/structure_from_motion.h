@@ -97,13 +97,14 @@ SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
 //     then starts its final refinement from RANSAC's last minimal sample, not
 //     its best, and may return a pose its inliers do not agree with: with 5 %
 //     outlier sightings, 33-178 deg off (docs/initialisation.md, "The stereo
-//     start with outliers"). Kept for the mono start, whose figures and tests
-//     were measured with it: without the guess two of its tests' single
-//     trials moved past their bounds and motion_mono's worst start scale went
-//     from 28.5 to 34.6 %. With 5 % outlier sightings the guess fails in
-//     mono too, but every mono start is then refused by the SfM's
-//     reprojection RMS with it or without (docs/initialisation.md, "The mono
-//     start in motion with outliers").
+//     start with outliers"), and 4.5 % of the mono SfM's placements. Kept for
+//     the mono start, whose figures and tests were measured with it (without
+//     it two of its tests' single trials moved past their bounds and
+//     motion_mono's worst start scale went from 28.5 to 34.6 %), but when
+//     fewer than options.min_pnp_inliers agree with the pose it returns (or
+//     it fails), the camera is placed again as without a guess: on the clean
+//     presets that changes no start (docs/initialisation.md, "The mono start
+//     in motion with outliers").
 bool PlaceCameraByPnp(const SfmFrame& frame,
                       const std::map<int64_t, Eigen::Vector3d>& points,
                       const Eigen::Isometry3d* guess, const SfmOptions& options,
