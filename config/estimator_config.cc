@@ -72,6 +72,9 @@ void ReadInit(const YamlNode& n, InitOptions* o) {
   o->mono.pnp_threshold_px = m.Get<double>("pnp_threshold_px");
   o->mono.max_reprojection_rms_px = m.Get<double>("max_reprojection_rms_px");
   o->mono.bundle_iterations = m.Get<int>("bundle_iterations");
+  o->mono.outlier_threshold_px = m.Get<double>("outlier_threshold_px");
+  o->mono.outlier_rounds = m.Get<int>("outlier_rounds");
+  o->mono.max_outlier_share = m.Get<double>("max_outlier_share");
   o->mono.min_imu_excitation = m.Get<double>("min_imu_excitation");
   o->mono.max_scale_uncertainty = m.Get<double>("max_scale_uncertainty");
   o->mono.long_window_s = m.Get<double>("long_window_s");

@@ -34,6 +34,10 @@ const char* InitFailureName(InitFailure failure) {
       return "PnP failed";
     case InitFailure::kReprojectionError:
       return "bundle adjustment reprojection error too large";
+    case InitFailure::kTooManyOutliers:
+      return "too many outlier sightings";
+    case InitFailure::kFewPointsLeft:
+      return "too few points left after the outliers' removal";
     case InitFailure::kFewStereoPoints:
       return "too few stereo points";
     case InitFailure::kNegativeScale:

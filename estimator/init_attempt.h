@@ -28,6 +28,8 @@ enum class InitFailure {
   kRotationMismatch,       // mono: essential vs gyroscope rotation [deg]
   kPnpFailed,              // a frame could not be placed: PnP inliers
   kReprojectionError,      // mono: RMS after the bundle adjustment [px]
+  kTooManyOutliers,        // mono: share of the sightings removed [-]
+  kFewPointsLeft,          // mono: points left after the outliers' removal
   kFewStereoPoints,        // stereo: points triangulated from the pair
   kNegativeScale,          // mono: least-squares scale <= 0
   kScaleUncertain,         // mono: relative std of the scale

@@ -53,6 +53,8 @@ struct InitDiagnostics {
   // stereo: of those, the ones removed before its first solve (at the
   // alignment's state, refine_prescreen_threshold_px).
   int refine_prescreen_removed = 0;
+  // mono: sightings the structure from motion's outlier rounds removed.
+  int sfm_outliers_removed = 0;
   // Relative std of the adjusted window's scale, from the joint
   // adjustment's covariance (estimator/scale_uncertainty.h); < 0: unknown.
   double refined_scale_sigma = -1.0;

@@ -57,6 +57,9 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
   r.Positive("init.mono.pnp_threshold_px", mono.pnp_threshold_px);
   r.Positive("init.mono.max_reprojection_rms_px", mono.max_reprojection_rms_px);
   r.AtLeast("init.mono.bundle_iterations", mono.bundle_iterations, 1);
+  r.Positive("init.mono.outlier_threshold_px", mono.outlier_threshold_px);
+  r.AtLeast("init.mono.outlier_rounds", mono.outlier_rounds, 0);
+  r.Positive("init.mono.max_outlier_share", mono.max_outlier_share);
   r.NonNegative("init.mono.min_imu_excitation", mono.min_imu_excitation);
   r.Positive("init.mono.max_scale_uncertainty", mono.max_scale_uncertainty);
   r.Positive("init.mono.max_refined_scale_uncertainty",

@@ -1,5 +1,7 @@
 #include "estimator/mono_initializer.h"
 
+#include <algorithm>
+
 #include "estimator/in_motion_start.h"
 #include "estimator/structure_from_motion.h"
 
@@ -18,6 +20,9 @@ SfmOptions SfmOptionsFrom(const EstimatorOptions& o, double focal_px) {
   s.pnp_threshold_px = m.pnp_threshold_px;
   s.max_reprojection_rms_px = m.max_reprojection_rms_px;
   s.bundle_iterations = m.bundle_iterations;
+  s.outlier_threshold_px = m.outlier_threshold_px;
+  s.outlier_rounds = m.outlier_rounds;
+  s.max_outlier_share = m.max_outlier_share;
   s.min_ray_angle_deg = o.triangulation.min_parallax_deg;
   return s;
 }
@@ -53,7 +58,9 @@ InitAttempt MonoInitializer::TryInitialize(
                           first.reason == InitFailure::kLowParallax ||
                           first.reason == InitFailure::kFewInliers ||
                           first.reason == InitFailure::kPnpFailed ||
-                          first.reason == InitFailure::kReprojectionError;
+                          first.reason == InitFailure::kReprojectionError ||
+                          first.reason == InitFailure::kTooManyOutliers ||
+                          first.reason == InitFailure::kFewPointsLeft;
   const std::vector<int> all = SelectFrames(frames, m.long_window_s, 2);
   if (!sfm_failed || SpanSeconds(frames, all) <= m.window_s) return first;
   // The features did not last over the long window: the fallback window.
@@ -99,12 +106,28 @@ InitAttempt MonoInitializer::TryWindow(const std::vector<BufferedFrame>& frames,
   if (sfm.failure != InitFailure::kNone) {
     return failed(sfm.failure, sfm.value, sfm.limit);
   }
+  window->diagnostics.sfm_outliers_removed = sfm.outlier_sightings;
   VisualTrajectory visual;
   visual.T_v_c = sfm.T_v_c;
   visual.points_v = sfm.points_v;
   visual.metric = false;
-  InitAttempt a = AlignAndBuild(visual, frames, selected, T_b_c_, options_,
-                                &intervals, window);
+  // The sightings the SfM found to be outliers do not go on to the window
+  // (its joint adjustment would have them, Huber-bounded, not removed).
+  std::vector<BufferedFrame> cleaned;
+  if (!sfm.removed.empty()) {
+    cleaned = frames;
+    for (const auto& [i, id] : sfm.removed) {
+      std::vector<FeatureObservation>& obs = cleaned[selected[i]].observations;
+      obs.erase(std::remove_if(obs.begin(), obs.end(),
+                               [id = id](const FeatureObservation& o) {
+                                 return o.camera == 0 && o.feature_id == id;
+                               }),
+                obs.end());
+    }
+  }
+  InitAttempt a =
+      AlignAndBuild(visual, sfm.removed.empty() ? frames : cleaned, selected,
+                    T_b_c_, options_, &intervals, window);
   a.t_ns = frames.back().t_ns;
   a.method = InitMethod::kMono;
   window->method = InitMethod::kMono;

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <set>
 
+#include "estimator/sighting_outliers.h"
 #include "estimator/triangulation.h"
 #include "estimator/window.h"
 #include "factors/pose_manifold.h"
@@ -142,6 +144,27 @@ bool PlaceCameraByPnp(const SfmFrame& frame,
   if (static_cast<int>(object.size()) < options.min_pnp_inliers) return false;
   const double threshold = options.pnp_threshold_px / options.focal_px;
   cv::Mat rvec, tvec;
+  // The points that agree with the pose (rvec, tvec) within the threshold.
+  // The image points are normalised (identity intrinsics): a point's
+  // projection is its camera coordinates over depth.
+  auto agreeing = [&](std::vector<cv::Point3d>* o,
+                      std::vector<cv::Point2d>* i) {
+    cv::Mat R;
+    cv::Rodrigues(rvec, R);
+    const cv::Matx33d Rm(R);
+    const cv::Vec3d t(tvec);
+    for (size_t k = 0; k < object.size(); ++k) {
+      const cv::Vec3d p_c = Rm * cv::Vec3d(object[k]) + t;
+      if (p_c[2] <= 0.0) continue;
+      const cv::Point2d projected(p_c[0] / p_c[2], p_c[1] / p_c[2]);
+      if (cv::norm(projected - image[k]) <= threshold) {
+        o->push_back(object[k]);
+        i->push_back(image[k]);
+      }
+    }
+  };
+  std::vector<int> ransac_inliers;
+  bool placed = false;
   if (guess != nullptr) {
     // The guess as OpenCV's object-to-camera transform T_c_v.
     const Eigen::Isometry3d T_c_v = guess->inverse();
@@ -150,37 +173,38 @@ bool PlaceCameraByPnp(const SfmFrame& frame,
     rvec = (cv::Mat_<double>(3, 1) << r.x(), r.y(), r.z());
     tvec = (cv::Mat_<double>(3, 1) << T_c_v.translation().x(),
             T_c_v.translation().y(), T_c_v.translation().z());
+    const bool ok = cv::solvePnPRansac(
+        object, image, Identity3(), cv::noArray(), rvec, tvec,
+        /*useExtrinsicGuess=*/true, /*iterationsCount=*/100,
+        static_cast<float>(threshold), 0.99, ransac_inliers,
+        cv::SOLVEPNP_ITERATIVE);
+    *inliers_out = static_cast<int>(ransac_inliers.size());
+    // Its inliers as OpenCV reports them, but only when the pose it returns
+    // agrees with as many: else (outlier sightings, see the header) the
+    // camera is placed again without the guess.
+    if (ok && *inliers_out >= options.min_pnp_inliers) {
+      std::vector<cv::Point3d> object_in;
+      std::vector<cv::Point2d> image_in;
+      agreeing(&object_in, &image_in);
+      placed = static_cast<int>(object_in.size()) >= options.min_pnp_inliers;
+    }
+    if (!placed) {
+      rvec = cv::Mat();
+      tvec = cv::Mat();
+      ransac_inliers.clear();
+    }
   }
-  std::vector<int> ransac_inliers;
-  const bool ok =
-      cv::solvePnPRansac(object, image, Identity3(), cv::noArray(), rvec, tvec,
-                         /*useExtrinsicGuess=*/guess != nullptr,
-                         /*iterationsCount=*/100, static_cast<float>(threshold),
-                         0.99, ransac_inliers, cv::SOLVEPNP_ITERATIVE);
-  *inliers_out = static_cast<int>(ransac_inliers.size());
-  if (!ok) return false;
-  if (guess == nullptr) {
+  if (!placed) {
+    const bool ok = cv::solvePnPRansac(
+        object, image, Identity3(), cv::noArray(), rvec, tvec,
+        /*useExtrinsicGuess=*/false, /*iterationsCount=*/100,
+        static_cast<float>(threshold), 0.99, ransac_inliers,
+        cv::SOLVEPNP_ITERATIVE);
+    *inliers_out = static_cast<int>(ransac_inliers.size());
+    if (!ok) return false;
     // RANSAC counts its inliers against its best sample's model, not
     // against the pose it returns: count them again against that pose, and
     // refine it on them (Levenberg-Marquardt on the reprojection error).
-    // The image points are normalised (identity intrinsics): a point's
-    // projection is its camera coordinates over depth.
-    auto agreeing = [&](std::vector<cv::Point3d>* o,
-                        std::vector<cv::Point2d>* i) {
-      cv::Mat R;
-      cv::Rodrigues(rvec, R);
-      const cv::Matx33d Rm(R);
-      const cv::Vec3d t(tvec);
-      for (size_t k = 0; k < object.size(); ++k) {
-        const cv::Vec3d p_c = Rm * cv::Vec3d(object[k]) + t;
-        if (p_c[2] <= 0.0) continue;
-        const cv::Point2d projected(p_c[0] / p_c[2], p_c[1] / p_c[2]);
-        if (cv::norm(projected - image[k]) <= threshold) {
-          o->push_back(object[k]);
-          i->push_back(image[k]);
-        }
-      }
-    };
     std::vector<cv::Point3d> object_in;
     std::vector<cv::Point2d> image_in;
     agreeing(&object_in, &image_in);
@@ -208,12 +232,23 @@ bool PlaceCameraByPnp(const SfmFrame& frame,
 
 namespace {
 
+// One adjusted sighting's reprojection error after the adjustment (NaN
+// where it could not be evaluated); a point's sightings are consecutive.
+struct SightingError {
+  int64_t id = -1;
+  int frame = -1;
+  double px = 0.0;
+};
+
 // Bundle adjustment over every pose and point (frame `fixed` held); returns
-// the RMS reprojection error [px] after it, over all observations.
+// the RMS reprojection error [px] after it, over all observations, and each
+// one's error in *errors (the anchor sightings, which the others are
+// measured against, have none).
 double BundleAdjust(const std::vector<SfmFrame>& frames, int fixed,
                     const SfmOptions& options,
                     std::vector<Eigen::Isometry3d>* T_v_c,
-                    std::map<int64_t, Eigen::Vector3d>* points) {
+                    std::map<int64_t, Eigen::Vector3d>* points,
+                    std::vector<SightingError>* errors) {
   const int n = static_cast<int>(frames.size());
   std::vector<std::array<double, 7>> poses(n);
   for (int k = 0; k < n; ++k) poses[k] = PoseArray((*T_v_c)[k]);
@@ -249,6 +284,8 @@ double BundleAdjust(const std::vector<SfmFrame>& frames, int fixed,
   struct Term {
     std::unique_ptr<ceres::CostFunction> cost;
     std::vector<double*> blocks;
+    int64_t id = -1;
+    int frame = -1;
   };
   std::vector<Term> terms;
   for (auto& [id, point] : rho) {
@@ -261,6 +298,8 @@ double BundleAdjust(const std::vector<SfmFrame>& frames, int fixed,
                                                     options.focal_px);
       t.blocks = {poses[point.anchor].data(), poses[k].data(), identity.data(),
                   &point.rho};
+      t.id = id;
+      t.frame = k;
       problem.AddResidualBlock(t.cost.get(), &loss, t.blocks);
       terms.push_back(std::move(t));
     }
@@ -275,12 +314,16 @@ double BundleAdjust(const std::vector<SfmFrame>& frames, int fixed,
   // Per axis, so that 1 px of feature noise reads about 1 px.
   double sum = 0.0;
   int count = 0;
+  errors->clear();
   for (const Term& t : terms) {
     Eigen::Vector2d r;
+    double px = std::numeric_limits<double>::quiet_NaN();
     if (t.cost->Evaluate(t.blocks.data(), r.data(), nullptr)) {
       sum += r.squaredNorm();
       count += 2;
+      px = r.norm();
     }
+    errors->push_back({t.id, t.frame, px});
   }
   for (int k = 0; k < n; ++k) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -378,11 +421,9 @@ SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
     // Frame k + 1 is placed already, whichever side of l k lies on.
     int pnp_inliers = 0;
     // With the neighbour's pose as OpenCV's guess, as the mono start's
-    // figures and tests were measured (PlaceCameraByPnp). With 5 % outlier
-    // sightings the guess places some frames with no point agreeing, but the
-    // mono start is refused then by the bundle adjustment's RMS over every
-    // sighting, outliers included, with or without the guess
-    // (docs/initialisation.md, "The mono start in motion with outliers").
+    // figures and tests were measured; where the pose it returns does not
+    // agree with its inliers (outlier sightings), without the guess
+    // (PlaceCameraByPnp).
     if (!PlaceCameraByPnp(frames[k], points, &T_v_c[k + 1], options, &T_v_c[k],
                           &pnp_inliers)) {
       result.failure = InitFailure::kPnpFailed;
@@ -394,8 +435,64 @@ SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
     TriangulateMore(frames, posed, T_v_c, options, {}, &points);
   }
   // 4. All of it adjusted together.
+  std::vector<SightingError> errors;
   result.reprojection_rms_px =
-      BundleAdjust(frames, l, options, &T_v_c, &points);
+      BundleAdjust(frames, l, options, &T_v_c, &points, &errors);
+  result.sightings = static_cast<int>(errors.size());
+  // 5. Outlier sightings out, the rest adjusted again (ClassifySightings:
+  // a point with mostly bad sightings goes whole, its anchor's too).
+  std::vector<SfmFrame> kept;  // frames without the removed sightings
+  for (int round = 0; round < options.outlier_rounds; ++round) {
+    std::vector<std::pair<int, int64_t>> out;
+    for (size_t b = 0; b < errors.size();) {
+      size_t e = b;
+      std::vector<double> px;
+      for (; e < errors.size() && errors[e].id == errors[b].id; ++e) {
+        px.push_back(errors[e].px);
+      }
+      const int64_t id = errors[b].id;
+      const SightingVerdict verdict =
+          ClassifySightings(px, options.outlier_threshold_px);
+      // A point the adjustment put behind its anchor is gone already.
+      if (points.count(id) > 0 && verdict.whole) {
+        points.erase(id);
+        result.outlier_sightings += static_cast<int>(e - b);
+        const std::vector<SfmFrame>& current = kept.empty() ? frames : kept;
+        for (int k = 0; k < n; ++k) {
+          if (current[k].xy.count(id) > 0) out.emplace_back(k, id);
+        }
+      } else if (points.count(id) > 0) {
+        for (int i : verdict.bad) out.emplace_back(errors[b + i].frame, id);
+        result.outlier_sightings += static_cast<int>(verdict.bad.size());
+      }
+      b = e;
+    }
+    if (out.empty()) break;
+    if (kept.empty()) kept = frames;
+    for (const auto& [k, id] : out) kept[k].xy.erase(id);
+    result.removed.insert(result.removed.end(), out.begin(), out.end());
+    result.reprojection_rms_px =
+        BundleAdjust(kept, l, options, &T_v_c, &points, &errors);
+  }
+  result.outlier_share =
+      result.sightings > 0
+          ? static_cast<double>(result.outlier_sightings) / result.sightings
+          : 0.0;
+  // A reconstruction that is mostly outliers is a wrong one: refused, as is
+  // one left with fewer points than its reference pair needed inliers.
+  if (!(result.outlier_share <= options.max_outlier_share)) {
+    result.failure = InitFailure::kTooManyOutliers;
+    result.value = result.outlier_share;
+    result.limit = options.max_outlier_share;
+    return result;
+  }
+  if (!result.removed.empty() &&
+      static_cast<int>(points.size()) < options.min_inliers) {
+    result.failure = InitFailure::kFewPointsLeft;
+    result.value = static_cast<double>(points.size());
+    result.limit = options.min_inliers;
+    return result;
+  }
   if (!(result.reprojection_rms_px <= options.max_reprojection_rms_px)) {
     result.failure = InitFailure::kReprojectionError;
     result.value = result.reprojection_rms_px;

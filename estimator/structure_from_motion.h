@@ -14,7 +14,15 @@
 //      so far, newest-side first, more points triangulated after each;
 //   4. a bundle adjustment with Ceres over all poses and inverse depths
 //      (the project's ReprojectionFactor with an identity extrinsic, frame l
-//      held fixed, the scale left to the damping), Huber-robust.
+//      held fixed, the scale left to the damping), Huber-robust;
+//   5. outlier sightings out: after the adjustment, the sightings whose
+//      reprojection error exceeds outlier_threshold_px are removed (a point
+//      with more than half of its sightings bad, whole: ClassifySightings,
+//      the rule the running window uses) and the adjustment run again on the
+//      rest, up to outlier_rounds times; the RMS check is then on the
+//      sightings kept, and the share removed and the points left are
+//      checked too, so that a reconstruction that is mostly outliers is
+//      still refused, with its own reason.
 // The frame v of the result is camera l's; its unit of length is arbitrary.
 // The estimator links OpenCV core and calib3d only for this (DESIGN.md).
 
@@ -22,6 +30,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "estimator/estimator_options.h"
@@ -44,6 +53,9 @@ struct SfmOptions {
   double pnp_threshold_px = 3.0;
   double max_reprojection_rms_px = 2.0;
   int bundle_iterations = 15;
+  double outlier_threshold_px = 10.0;  // a sighting's error, after the BA
+  int outlier_rounds = 3;             // 0: none removed
+  double max_outlier_share = 0.2;     // of the sightings adjusted
   double min_ray_angle_deg = 0.5;  // a point's widest pair of rays [deg]
 };
 
@@ -55,9 +67,17 @@ struct SfmResult {
   int reference = -1;        // l, paired with the newest frame
   double parallax_px = 0.0;  // of the pair (or the best candidate) [px]
   int inliers = 0;           // essential-matrix inliers in front
-  double reprojection_rms_px = 0.0;
+  double reprojection_rms_px = 0.0;  // over the sightings kept
+  // The outlier rounds: sightings adjusted at first, removed (those of the
+  // points removed whole included), and their share.
+  int sightings = 0;
+  int outlier_sightings = 0;
+  double outlier_share = 0.0;
   std::vector<Eigen::Isometry3d> T_v_c;  // per frame, camera in v
   std::map<int64_t, Eigen::Vector3d> points_v;
+  // The sightings removed as outliers, as (index into frames, feature id):
+  // the start must not hand them on to the window.
+  std::vector<std::pair<int, int64_t>> removed;
 };
 
 // frames oldest first, at least two. Never throws on bad data: a failure is
@@ -77,13 +97,14 @@ SfmResult SolveStructureFromMotion(const std::vector<SfmFrame>& frames,
 //     then starts its final refinement from RANSAC's last minimal sample, not
 //     its best, and may return a pose its inliers do not agree with: with 5 %
 //     outlier sightings, 33-178 deg off (docs/initialisation.md, "The stereo
-//     start with outliers"). Kept for the mono start, whose figures and tests
-//     were measured with it: without the guess two of its tests' single
-//     trials moved past their bounds and motion_mono's worst start scale went
-//     from 28.5 to 34.6 %. With 5 % outlier sightings the guess fails in
-//     mono too, but every mono start is then refused by the SfM's
-//     reprojection RMS with it or without (docs/initialisation.md, "The mono
-//     start in motion with outliers").
+//     start with outliers"), and 4.5 % of the mono SfM's placements. Kept for
+//     the mono start, whose figures and tests were measured with it (without
+//     it two of its tests' single trials moved past their bounds and
+//     motion_mono's worst start scale went from 28.5 to 34.6 %), but when
+//     fewer than options.min_pnp_inliers agree with the pose it returns (or
+//     it fails), the camera is placed again as without a guess: on the clean
+//     presets that changes no start (docs/initialisation.md, "The mono start
+//     in motion with outliers").
 bool PlaceCameraByPnp(const SfmFrame& frame,
                       const std::map<int64_t, Eigen::Vector3d>& points,
                       const Eigen::Isometry3d* guess, const SfmOptions& options,

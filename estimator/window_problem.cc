@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <utility>
 
 #include "estimator/image_velocity.h"
+#include "estimator/sighting_outliers.h"
 #include "estimator/window_solver.h"
 #include "factors/imu_factor.h"
 #include "factors/reprojection_factor.h"
@@ -363,38 +365,33 @@ bool OutlierReport::Involves(int64_t feature_id) const {
 OutlierReport WindowProblem::Outliers(double threshold_px) const {
   OutlierReport report;
   // A whitened residual r = (focal / sigma) e has |e| focal = |r| sigma px.
-  // Each sighting is tested on its own, so that one bad observation (a
-  // tracker slip) costs that observation, not the whole landmark.
+  // The rule is ClassifySightings' (estimator/sighting_outliers.h).
   const double max_norm = threshold_px / settings_.visual.sigma_px;
-  std::vector<OutlierReport::BadSighting> bad;
-  int total = 0;
-  bool failed = false;
+  std::vector<OutlierReport::BadSighting> tested;
+  std::vector<double> norms;
   for (size_t k = 0; k < residuals_.size(); ++k) {
     const Residual& r = residuals_[k];
     if (r.feature_id < 0) continue;
     Eigen::Vector2d e;
     const bool ok = r.cost->Evaluate(r.blocks.data(), e.data(), nullptr);
-    failed = failed || !ok || !e.allFinite();
-    if (!failed && e.norm() > max_norm) {
-      bad.push_back({r.feature_id, r.target_frame, r.target_camera});
-    }
-    ++total;
+    norms.push_back(ok ? e.norm() : std::numeric_limits<double>::quiet_NaN());
+    tested.push_back({r.feature_id, r.target_frame, r.target_camera});
     // A landmark's residuals are consecutive.
     const bool last = k + 1 == residuals_.size() ||
                       residuals_[k + 1].feature_id != r.feature_id;
     if (!last) continue;
     // A world point has no anchor to be behind (its residuals are clamped
     // behind any camera, factors/world_point_factor.h).
+    const SightingVerdict verdict = ClassifySightings(norms, max_norm);
     if (r.rho != nullptr && !(*r.rho > 0.0)) {
       report.behind.push_back(r.feature_id);
-    } else if (failed || 2 * static_cast<int>(bad.size()) > total) {
+    } else if (verdict.whole) {
       report.landmarks.push_back(r.feature_id);
     } else {
-      report.sightings.insert(report.sightings.end(), bad.begin(), bad.end());
+      for (int i : verdict.bad) report.sightings.push_back(tested[i]);
     }
-    bad.clear();
-    total = 0;
-    failed = false;
+    tested.clear();
+    norms.clear();
   }
   return report;
 }

@@ -82,6 +82,9 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.init.mono.max_reprojection_rms_px,
             d.init.mono.max_reprojection_rms_px);
   EXPECT_EQ(o.init.mono.bundle_iterations, d.init.mono.bundle_iterations);
+  EXPECT_EQ(o.init.mono.outlier_threshold_px, d.init.mono.outlier_threshold_px);
+  EXPECT_EQ(o.init.mono.outlier_rounds, d.init.mono.outlier_rounds);
+  EXPECT_EQ(o.init.mono.max_outlier_share, d.init.mono.max_outlier_share);
   EXPECT_EQ(o.init.mono.min_imu_excitation, d.init.mono.min_imu_excitation);
   EXPECT_EQ(o.init.mono.max_scale_uncertainty,
             d.init.mono.max_scale_uncertainty);

@@ -416,6 +416,42 @@ TEST(EstimatorStart, StereoStartRemovesGrossOutliersBeforeItsFirstSolve) {
   }
 }
 
+// The mono start in motion with 5 % outlier sightings (init_benchmark's
+// motion_mono_out5 and handheld_out5, docs/initialisation.md, "The mono
+// start in motion with outliers"): the structure from motion removes them
+// (init.mono.outlier_rounds) and starts within 2 s. Before, its RMS over
+// every sighting (28-41 px at the least) refused every mono attempt and
+// these trials started by the gyroscope-aided fallback or not at all within
+// 6 s. Measured: 1.90 s -15.7 %, 1.85 s +10.1 %, 1.50 s -5.4 %.
+TEST(EstimatorStart, MonoStartWithOutliersStartsWithinTwoSeconds) {
+  const struct {
+    const char* preset;
+    uint32_t seed;
+    double phase_s;
+  } trials[] = {{"motion_mono", 1000, 3.0},
+                {"motion_mono", 1001, 6.75},
+                {"handheld", 1001, 3.5}};
+  for (const auto& trial : trials) {
+    SimulatorOptions o = Preset(trial.preset, 2.5);
+    o.camera.outlier_fraction = 0.05;
+    o.seed = trial.seed;
+    o.motion.start_phase_s = trial.phase_s;
+    const Simulation sim = Simulate(o);
+    const testing::SimReplay run =
+        testing::ReplaySimulation(sim, testing::OptionsFor(o));
+    ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
+    const StartCheck c = CheckFirstStart(sim, run);
+    EXPECT_EQ(c.method, InitMethod::kMono) << trial.preset << " " << trial.seed;
+    EXPECT_LE(c.time_s, 2.0) << trial.preset << " " << trial.seed;
+    EXPECT_LT(std::abs(c.scale_error), 0.2)
+        << trial.preset << " " << trial.seed;
+    EXPECT_LT(c.gravity_deg, 2.0) << trial.preset << " " << trial.seed;
+    std::printf("%s seed %u: start after %.2f s, scale %+.1f %%, gravity %.2f deg\n",
+                trial.preset, trial.seed, c.time_s, 100.0 * c.scale_error,
+                c.gravity_deg);
+  }
+}
+
 TEST(EstimatorStart, ZeroVelocityNeverFiresInSlowMotion) {
   // 2 s still, a 2 s blend, then ~0.1 m/s with accelerations the IMU test
   // cannot tell from rest: the image test must keep the detector quiet

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <map>
 #include <random>
+#include <set>
+#include <utility>
 
 #include "dataset/simulator.h"
 #include "frontend/observation_builder.h"
@@ -258,6 +260,97 @@ TEST(StructureFromMotion, PnpPlacesACameraAmongGrossOutliers) {
     EXPECT_LT(position_m, 0.05) << "scene " << scene;
     EXPECT_GE(agreeing, inliers) << "scene " << scene;
     EXPECT_GE(inliers, 140 - outliers - 10) << "scene " << scene;
+  }
+}
+
+// The scene of WithPixelNoiseStaysCloseToTheTruth (1 px of noise, 11 frames
+// 0.2 s apart) with 5 % of the sightings in the frames between the first and
+// the newest replaced by hand with gross outliers, uniform over a 752 x 480
+// image as camera.outlier_fraction makes them (at least 20 px off). Without
+// the outlier rounds the bundle adjustment's RMS counts them and the
+// reconstruction is refused; with its RMS check lifted it comes out far off.
+// With the rounds, the gross outliers are removed (all but those a point's
+// other sightings cannot tell: a point seen twice, or over a short baseline,
+// fits one along its epipolar line), no sighting beyond the threshold is
+// left, the RMS on the sightings kept is the clean scene's, and the motion is
+// close to the truth. With a share limit below what was removed, the same
+// scene is refused for it, with its own reason.
+TEST(StructureFromMotion, GrossOutlierSightingsAreRemoved) {
+  const double f = 458.0;
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    const Simulation sim = Simulate(InMotion(1.0, seed));
+    Case c = MakeCase(sim, 40, 4, 11);
+    std::mt19937 rng(100 + seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::set<std::pair<int, int64_t>> corrupted;
+    const int n = static_cast<int>(c.frames.size());
+    for (int k = 1; k + 1 < n; ++k) {
+      for (auto& [id, xy] : c.frames[k].xy) {
+        if (unit(rng) >= 0.05) continue;
+        const Eigen::Vector2d bad((unit(rng) - 0.5) * 752.0 / f,
+                                  (unit(rng) - 0.5) * 480.0 / f);
+        if (f * (bad - xy).norm() < 20.0) continue;  // gross ones only
+        xy = bad;
+        corrupted.insert({k, id});
+      }
+    }
+    ASSERT_GT(corrupted.size(), 40u);
+    SfmOptions o;
+    o.focal_px = f;
+    o.ransac_threshold_px = 2.0;
+    o.outlier_rounds = 0;
+    const SfmResult without = SolveStructureFromMotion(c.frames, o);
+    EXPECT_EQ(without.failure, InitFailure::kReprojectionError)
+        << InitFailureName(without.failure) << " " << without.value;
+    SfmOptions lifted = o;
+    lifted.max_reprojection_rms_px = 1e9;
+    const SfmResult kept_all = SolveStructureFromMotion(c.frames, lifted);
+    ASSERT_EQ(kept_all.failure, InitFailure::kNone);
+    const Errors e_all = Compare(kept_all, c);
+    o.outlier_rounds = 3;
+    const SfmResult r = SolveStructureFromMotion(c.frames, o);
+    ASSERT_EQ(r.failure, InitFailure::kNone)
+        << InitFailureName(r.failure) << " " << r.value;
+    const std::set<std::pair<int, int64_t>> removed(r.removed.begin(),
+                                                    r.removed.end());
+    int left = 0;  // gross outliers left on the points kept
+    for (const auto& [k, id] : corrupted) {
+      if (r.points_v.count(id) > 0 && removed.count({k, id}) == 0) ++left;
+    }
+    for (int k = 0; k < n; ++k) {
+      for (const auto& [id, xy] : c.frames[k].xy) {
+        const auto p = r.points_v.find(id);
+        if (p == r.points_v.end() || removed.count({k, id}) > 0) continue;
+        const Eigen::Vector3d p_c = r.T_v_c[k].inverse() * p->second;
+        EXPECT_LE(f * (p_c.hnormalized() - xy).norm(),
+                  o.outlier_threshold_px)
+            << "seed " << seed << ", frame " << k << ", feature " << id;
+      }
+    }
+    const Errors e = Compare(r, c);
+    std::printf(
+        "seed %u: %zu gross outliers, %d left on kept points; RMS without "
+        "the rounds %.1f px (lifted: position %.2e, rotation %.2f deg), with "
+        "them %.3f px; removed %d of %d sightings (%.1f %%), position %.2e, "
+        "rotation %.2f deg\n",
+        seed, corrupted.size(), left, without.value, e_all.position,
+        e_all.rotation_deg, r.reprojection_rms_px, r.outlier_sightings,
+        r.sightings, 100.0 * r.outlier_share, e.position, e.rotation_deg);
+    EXPECT_LE(left, static_cast<int>(corrupted.size()) / 10) << seed;
+    EXPECT_LT(r.reprojection_rms_px, 1.7) << seed;
+    EXPECT_LT(r.outlier_share, 0.15) << seed;
+    // Measured 3.6-8.3 % and 0.57-1.11 deg; the outliers kept (Huber alone)
+    // 8.5-19.7 % and 1.07-2.21 deg; the clean scene 1.6-2.3 % and
+    // 0.24-0.36 deg, as with the gross outliers taken out by hand (so not
+    // all the harm is undone: docs/initialisation.md).
+    EXPECT_LT(e.position, 0.1) << seed;
+    EXPECT_LT(e.rotation_deg, 1.5) << seed;
+    EXPECT_LT(e.rotation_deg, e_all.rotation_deg * 1.1) << seed;
+    o.max_outlier_share = 0.5 * r.outlier_share;
+    const SfmResult refused = SolveStructureFromMotion(c.frames, o);
+    EXPECT_EQ(refused.failure, InitFailure::kTooManyOutliers)
+        << InitFailureName(refused.failure);
+    EXPECT_EQ(refused.value, r.outlier_share);
   }
 }
 

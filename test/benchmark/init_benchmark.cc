@@ -27,7 +27,8 @@
 //
 // --first-seed N: the trials' seeds are N, N+1, ... (default 1000; the start
 // phases stay spread over the lap whatever N), so that a limit chosen on one
-// set of seeds can be validated on a disjoint one. --drop-outliers (a
+// set of seeds can be validated on a disjoint one; --phase-shift X moves trial
+// k's phase to (k + X) / seeds of a lap (0.5: between the default's). --drop-outliers (a
 // diagnosis with the simulator's knowledge): the outlier sightings
 // (camera.outlier_fraction) are left out instead of fed, the same draws
 // otherwise.
@@ -38,12 +39,14 @@
 // --stereo-outlier-rounds, --stereo-outlier-px, --stereo-prescreen-px and
 // --stereo-max-change its refine_outlier_rounds, refine_outlier_threshold_px,
 // refine_prescreen_threshold_px and max_refine_scale_change;
+// --mono-outlier-rounds, --mono-outlier-px and --mono-max-outlier-share
+// init.mono's outlier_rounds, outlier_threshold_px and max_outlier_share;
 // --min-parallax,
 // --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
 // init.mono's options, to measure them.
 //
 //   init_benchmark [--preset NAME]... [--seeds N] [--first-seed N]
-//                  [--drop-outliers] [--seconds S] [--ate]
+//                  [--phase-shift X] [--drop-outliers] [--seconds S] [--ate]
 //                  [--verbose] [--diagnose] [--long-window S]
 //                  [--max-scale-sigma X] [--min-parallax PX]
 //                  [--min-correspondences N] [--gyro-aided 0|1]
@@ -52,6 +55,8 @@
 //                  [--attempts] [--stereo-span S] [--stereo-window S]
 //                  [--stereo-outlier-rounds N] [--stereo-outlier-px PX]
 //                  [--stereo-prescreen-px PX] [--stereo-max-change X]
+//                  [--mono-outlier-rounds N] [--mono-outlier-px PX]
+//                  [--mono-max-outlier-share X]
 //                  [--ate-from S]... [--ate-runs N] [--ate-separate]
 //                  [--cut S] [--ate-only]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
@@ -164,6 +169,7 @@ struct Trial {
   double refine_change = 0.0;      // the joint adjustment's path change
   int refine_outliers = 0;         // sightings its outlier rounds removed
   int prescreened = 0;             // of those, before its first solve
+  int sfm_outliers = 0;  // mono: sightings the SfM's outlier rounds removed
   InitMethod method = InitMethod::kAuto;
   std::string failures;
   // The running estimate's gravity direction error at kLaterTimes after the
@@ -277,6 +283,7 @@ Trial RunTrial(const SimulatorOptions& sim_options, const Args& args) {
   t.refine_change = start.diagnostics.refine_scale_change;
   t.refine_outliers = start.diagnostics.refine_outliers_removed;
   t.prescreened = start.diagnostics.refine_prescreen_removed;
+  t.sfm_outliers = start.diagnostics.sfm_outliers_removed;
   if (!summary.init_attempts.empty()) {
     t.failures = DescribeInitFailures(summary.init_attempts);
   }
@@ -295,9 +302,11 @@ void StartFigures(const std::string& preset, const Args& args) {
   for (int k = 0; k < args.seeds; ++k) {
     SimulatorOptions o = base;
     o.seed = static_cast<uint32_t>(args.first_seed + k);
-    // Start phases spread over one lap.
+    // Start phases spread over one lap (--phase-shift: between those of
+    // other trials).
     o.motion.start_phase_s =
-        base.motion.start_phase_s + k * base.motion.lap_period_s / args.seeds;
+        base.motion.start_phase_s +
+        (k + args.phase_shift) * base.motion.lap_period_s / args.seeds;
     o.duration_s = args.seconds;
     const Trial t = RunTrial(o, args);
     if (args.verbose || args.diagnose) {
@@ -310,13 +319,13 @@ void StartFigures(const std::string& preset, const Args& args) {
             "predicted scale sigma %.2f %% (initialiser's own %.2f %%), "
             "parallax %.2f px, adjustment's path change %+.2f %%, "
             "outliers removed %d (%d before its first solve), the adjustment "
-            "moved b_g %.5f, b_a %.3f",
+            "moved b_g %.5f, b_a %.3f, SfM outliers removed %d",
             InitMethodName(t.method), t.time_s, 100 * t.scale_error,
             100 * t.alignment_scale_error, t.gravity_deg, t.gyro_bias,
             t.initial_gyro_bias, t.accel_bias, 100 * t.scale_sigma,
             100 * t.own_sigma, t.parallax_px, 100 * t.refine_change,
             t.refine_outliers, t.prescreened, t.gyro_bias_move,
-            t.accel_bias_move);
+            t.accel_bias_move, t.sfm_outliers);
       }
       std::printf("\n    %s\n", t.failures.c_str());
     }

@@ -43,6 +43,15 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   if (args.stereo_max_change > 0.0) {
     o.init.stereo.max_refine_scale_change = args.stereo_max_change;
   }
+  if (args.mono_outlier_rounds >= 0) {
+    o.init.mono.outlier_rounds = args.mono_outlier_rounds;
+  }
+  if (args.mono_outlier_px > 0.0) {
+    o.init.mono.outlier_threshold_px = args.mono_outlier_px;
+  }
+  if (args.mono_max_outlier_share > 0.0) {
+    o.init.mono.max_outlier_share = args.mono_max_outlier_share;
+  }
   return o;
 }
 
@@ -62,6 +71,8 @@ Args Parse(int argc, char** argv) {
       a.first_seed = std::stoi(value());
     } else if (s == "--drop-outliers") {
       a.drop_outliers = true;
+    } else if (s == "--phase-shift") {
+      a.phase_shift = std::stod(value());
     } else if (s == "--seconds") {
       a.seconds = std::stod(value());
     } else if (s == "--ate") {
@@ -96,6 +107,12 @@ Args Parse(int argc, char** argv) {
       a.stereo_prescreen_px = std::stod(value());
     } else if (s == "--stereo-max-change") {
       a.stereo_max_change = std::stod(value());
+    } else if (s == "--mono-outlier-rounds") {
+      a.mono_outlier_rounds = std::stoi(value());
+    } else if (s == "--mono-outlier-px") {
+      a.mono_outlier_px = std::stod(value());
+    } else if (s == "--mono-max-outlier-share") {
+      a.mono_max_outlier_share = std::stod(value());
     } else if (s == "--ate-runs") {
       a.ate_runs = std::stoi(value());
     } else if (s == "--ate-from") {

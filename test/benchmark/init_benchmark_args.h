@@ -22,6 +22,9 @@ struct Args {
   // --drop-outliers (a diagnosis, the truth's knowledge): the simulation's
   // outlier sightings are left out of the frames instead of fed.
   bool drop_outliers = false;
+  // --phase-shift X: the start phases shifted X of a step (k + X) / seeds
+  // of a lap, so that held-out trials can also lie between the first ones.
+  double phase_shift = 0.0;
   double seconds = 6.0;  // simulated per start trial [s]
   bool ate = false;
   // --against-default (implies --ate-separate): also replay in motion with
@@ -55,6 +58,11 @@ struct Args {
   double stereo_max_change = -1.0;
   double stereo_outlier_px = -1.0;  // refine_outlier_threshold_px
   double stereo_prescreen_px = -1.0;  // refine_prescreen_threshold_px
+  // init.mono.outlier_rounds, outlier_threshold_px, max_outlier_share (< 0:
+  // the defaults).
+  int mono_outlier_rounds = -1;
+  double mono_outlier_px = -1.0;
+  double mono_max_outlier_share = -1.0;
   // With --ate (repeatable --ate-from S): also the ATE of both runs over
   // their frames from S seconds after the cut (--ate-separate: after the
   // first frame) on, aligned on those alone.
