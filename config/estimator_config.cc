@@ -136,6 +136,7 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
   }
   o->landmarks.world_points_in_max_landmarks =
       l.Get<bool>("world_points_in_max_landmarks");
+  o->landmarks.max_world_points = l.Get<int>("max_world_points");
   const YamlNode s = e.Child("static_init");
   o->static_init.window_s = s.Get<double>("window_s");
   o->static_init.block_s = s.Get<double>("block_s");
@@ -200,6 +201,10 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << (o.landmarks.world_points_in_max_landmarks
               ? ""
               : " (world points on top of the maximum)")
+      << (o.landmarks.max_world_points > 0
+              ? ", world points at most " +
+                    std::to_string(o.landmarks.max_world_points)
+              : std::string())
       << "\n"
       << "  solver: "
       << (o.solver.backend == SolverBackend::kWindow

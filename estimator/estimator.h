@@ -129,6 +129,12 @@ struct EstimatorSummary {
   // keep_point: world points marginalised out of the prior apart from a
   // frame's marginalisation (their track ended otherwise), by batch.
   int64_t points_released = 0;
+  // keep_point with max_world_points: world points marginalised with all
+  // their sightings to keep within the bound, and the most world points
+  // held after any marginalisation of the oldest frame (seen in a frame
+  // that stays).
+  int64_t points_capped = 0;
+  int64_t most_world_points = 0;
   int64_t solver_failures = 0;           // Ceres reported failure
   // Per step: Ceres' wall time, and the CPU time of this thread during the
   // solve (unaffected by other processes competing for the cores) [s]. As

@@ -79,6 +79,15 @@ struct LandmarkOptions {
   // places); false puts them on top of max_landmarks inverse-depth
   // landmarks (docs/recorded_flights.md, "A keep_point variant").
   bool world_points_in_max_landmarks = true;
+  // keep_point: at most this many world points stay after a
+  // marginalisation (0: no bound). The excess, those whose last sighting is
+  // oldest first (the points that would leave the window soonest: tracks the
+  // tracker lost before tracks still seen), are marginalised with every
+  // sighting they have in the window and forgotten; a track still seen goes
+  // on as a new landmark. Each sighting still enters the prior once; what is
+  // bounded is the dense part of the solver's system and of the prior
+  // (docs/recorded_flights.md, "A bound on the world points").
+  int max_world_points = 0;
 };
 
 // Static start: the IMU tells when the vehicle stands still.

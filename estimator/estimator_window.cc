@@ -103,6 +103,7 @@ WindowProblemSettings Estimator::ProblemSettings() const {
   s.point_first_estimates = options_.landmarks.reanchored_tracks ==
                             ReanchoredTracks::kKeepPointFirstEstimate;
   s.points_in_max_landmarks = options_.landmarks.world_points_in_max_landmarks;
+  s.max_points = options_.landmarks.max_world_points;
   return s;
 }
 
@@ -116,6 +117,11 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
   if (result.ok()) {
     prior_ = result.MakePrior();
     prior_blocks_ = result.kept_parameter_blocks;
+    // Every sighting of a capped point is in the prior now: its track, if
+    // it goes on, starts again as a new landmark.
+    for (const int64_t id : problem.capped_points()) features_.Forget(id);
+    summary_.points_capped +=
+        static_cast<int64_t>(problem.capped_points().size());
     // The extrinsic and gap-bias priors were folded factors: now in prior_.
     extrinsic_prior_.reset();
     extrinsic_prior_blocks_.clear();
@@ -137,6 +143,21 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
     SetExtrinsicPrior();
     DropWorldPoints();
   }
+  // The world points that stay: those the oldest frame takes with it
+  // (their last sighting is there) are no longer in any problem.
+  const int64_t oldest_id = window_.frames.front()->id;
+  int64_t world_points = 0;
+  for (const auto& [id, l] : features_.landmarks()) {
+    if (l.world_point &&
+        std::any_of(l.sightings.begin(), l.sightings.end(),
+                    [oldest_id](const Sighting& s) {
+                      return s.frame_id != oldest_id;
+                    })) {
+      ++world_points;
+    }
+  }
+  summary_.most_world_points =
+      std::max(summary_.most_world_points, world_points);
   summary_.marginalization_time_s.Add(
       Seconds(std::chrono::steady_clock::now() - start));
   summary_.marginalization_cpu_time_s.Add(ThreadCpuSeconds() - cpu_start);

@@ -75,6 +75,9 @@ struct WindowProblemSettings {
   // keep_points: the world points take places of max_landmarks
   // (LandmarkOptions::world_points_in_max_landmarks).
   bool points_in_max_landmarks = true;
+  // keep_points: world points left after OldestFrameMarginalization at most
+  // (LandmarkOptions::max_world_points; 0: no bound).
+  int max_points = 0;
 };
 
 // What the outlier test found.
@@ -148,9 +151,15 @@ class WindowProblem {
   // world-point factors (owned here, so this problem must outlive the
   // marginalisation), and its point is kept. A world point's factors in the
   // oldest frame are folded too; its point is marginalised when it has no
-  // sighting in another frame.
+  // sighting in another frame. With max_points > 0 and more world points
+  // left than that, the excess (see CapWorldPoints) is marginalised too,
+  // with every sighting it has in the window.
   MarginalizationProblem OldestFrameMarginalization(
       const OutlierReport& excluded) const;
+  // The world points the last OldestFrameMarginalization marginalised to
+  // keep within max_points (by feature id): the caller forgets them once the
+  // marginalisation has succeeded (their sightings are in the prior).
+  const std::vector<int64_t>& capped_points() const { return capped_points_; }
 
   // The problem as a ceres::Problem on the window's blocks, as the Ceres
   // backend solves it (for estimator/pose_covariance.h).
@@ -210,6 +219,13 @@ class WindowProblem {
                                const std::set<int64_t>& converted,
                                MarginalizationProblem* m,
                                std::set<const double*>* touched) const;
+  // keep_points with max_points > 0: which of the world points left after
+  // this marginalisation (`staying`, by feature id) to marginalise so that
+  // max_points stay: the excess, those whose last sighting is oldest first,
+  // then those with fewer sightings, then by feature id. Those with an
+  // outlier are never chosen (the estimator removes or releases them).
+  std::vector<int64_t> CapWorldPoints(const std::vector<int64_t>& staying,
+                                      const OutlierReport& excluded) const;
   // Image velocity d xy / dt [1/s] of the point p_c [m] in `camera` of
   // frame, predicted from the frame's current state (the timed factors).
   Eigen::Vector2d MotionVelocity(const WindowFrame& frame,
@@ -230,6 +246,7 @@ class WindowProblem {
   // The world-point factors of the landmarks converted by the last
   // OldestFrameMarginalization (referred to by its result).
   mutable std::vector<std::unique_ptr<ceres::CostFunction>> converted_factors_;
+  mutable std::vector<int64_t> capped_points_;
 };
 
 }  // namespace vio

@@ -71,15 +71,82 @@ std::set<int64_t> WindowProblem::ConvertLeavingTracks(
   return converted;
 }
 
+std::vector<int64_t> WindowProblem::CapWorldPoints(
+    const std::vector<int64_t>& staying, const OutlierReport& excluded) const {
+  const int excess =
+      static_cast<int>(staying.size()) - settings_.max_points;
+  if (settings_.max_points <= 0 || excess <= 0) return {};
+  // Why this order: a point leaves the window with its last sighting, so
+  // the one whose last sighting is oldest would leave soonest anyway, and a
+  // track the tracker has lost (not seen in the newest frame) has no future
+  // sighting to link to its past; among tracks still seen, one with fewer
+  // sightings holds less of the live problem. Marginalised now, such a
+  // point's sightings are linearised a few steps earlier than they would
+  // have been; nothing is dropped.
+  struct Rank {
+    int64_t last_frame;
+    size_t sightings;
+    int64_t id;
+  };
+  std::vector<Rank> candidates;
+  for (const int64_t id : staying) {
+    if (excluded.Involves(id)) continue;
+    const Landmark& l = features_->landmarks().at(id);
+    candidates.push_back({l.sightings.back().frame_id, l.sightings.size(), id});
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Rank& a, const Rank& b) {
+              if (a.last_frame != b.last_frame) {
+                return a.last_frame < b.last_frame;
+              }
+              if (a.sightings != b.sightings) return a.sightings < b.sightings;
+              return a.id < b.id;
+            });
+  std::vector<int64_t> capped;
+  for (int k = 0; k < excess && k < static_cast<int>(candidates.size()); ++k) {
+    capped.push_back(candidates[k].id);
+  }
+  std::sort(capped.begin(), capped.end());
+  return capped;
+}
+
 void WindowProblem::AddPointMarginalization(
     const OutlierReport& excluded, const std::set<int64_t>& converted,
     MarginalizationProblem* m, std::set<const double*>* touched) const {
   converted_factors_.clear();
+  capped_points_.clear();
   WindowFrame& oldest = *window_->frames.front();
+  // The world points left after this marginalisation: the converted ones
+  // and those seen in another frame than the oldest. A world point seen in
+  // no other frame leaves with this one (its factors are all among the
+  // oldest frame's, folded by OldestFrameMarginalization). One with
+  // outliers is about to be removed: the estimator releases it from the
+  // prior then.
+  std::vector<int64_t> ending;
+  std::vector<int64_t> staying(converted.begin(), converted.end());
+  for (const auto& [id, l] : features_->landmarks()) {
+    if (!l.world_point || l.sightings.empty() || converted.count(id) != 0) {
+      continue;
+    }
+    const bool ends = std::all_of(
+        l.sightings.begin(), l.sightings.end(),
+        [&oldest](const Sighting& s) { return s.frame_id == oldest.id; });
+    if (!ends) {
+      staying.push_back(id);
+    } else if (!excluded.Involves(id)) {
+      ending.push_back(id);
+    }
+  }
+  capped_points_ = CapWorldPoints(staying, excluded);
+  const std::set<int64_t> capped(capped_points_.begin(), capped_points_.end());
+  // A converted track folds its oldest-frame sightings (all of them when
+  // capped), as world-point factors at its first estimate.
   for (const int64_t id : converted) {
     Landmark& l = features_->landmarks().at(id);
+    const bool all = capped.count(id) != 0;
     for (const Sighting& s : l.sightings) {
-      if (s.frame_id != oldest.id) continue;
+      if (!all && s.frame_id != oldest.id) continue;
+      double* pose = window_->Find(s.frame_id)->pose.data();
       converted_factors_.push_back(
           std::make_unique<WorldPointReprojectionFactor>(
               s.xy,
@@ -88,25 +155,27 @@ void WindowProblem::AddPointMarginalization(
       m->residual_blocks.push_back(
           {converted_factors_.back().get(),
            loss_.get(),
-           {oldest.pose.data(), window_->extrinsics[s.camera].data(),
-            l.p_w.data()}});
-      touched->insert(oldest.pose.data());
+           {pose, window_->extrinsics[s.camera].data(), l.p_w.data()}});
+      touched->insert(pose);
       touched->insert(window_->extrinsics[s.camera].data());
     }
     m->parameter_blocks.push_back({l.p_w.data(), 3, nullptr, false});
   }
-  // A world point seen in no other frame leaves with this one (its factors
-  // are all among the oldest frame's, folded above). One with outliers is
-  // about to be removed: the estimator releases it from the prior then.
-  for (const auto& [id, l] : features_->landmarks()) {
-    if (!l.world_point || l.sightings.empty() || converted.count(id) != 0 ||
-        excluded.Involves(id)) {
+  // A capped world point of earlier steps: its factors in the other frames
+  // (those in the oldest are folded already).
+  for (const Residual& r : residuals_) {
+    if (r.point == nullptr || capped.count(r.feature_id) == 0 ||
+        converted.count(r.feature_id) != 0 || r.target_frame == oldest.id) {
       continue;
     }
-    const bool ends = std::all_of(
-        l.sightings.begin(), l.sightings.end(),
-        [&oldest](const Sighting& s) { return s.frame_id == oldest.id; });
-    if (ends) m->marginalized.push_back(l.p_w.data());
+    m->residual_blocks.push_back({r.cost, r.loss, r.blocks});
+    touched->insert(r.blocks.begin(), r.blocks.end());
+  }
+  for (const int64_t id : ending) {
+    m->marginalized.push_back(features_->landmarks().at(id).p_w.data());
+  }
+  for (const int64_t id : capped_points_) {
+    m->marginalized.push_back(features_->landmarks().at(id).p_w.data());
   }
 }
 

@@ -18,21 +18,26 @@ using testing::SimReplay;
 
 SimReplay ReplayWith(bool stereo, ReanchoredTracks mode,
                      double outlier_fraction = 0.0,
-                     bool points_in_max_landmarks = true) {
+                     bool points_in_max_landmarks = true,
+                     int max_world_points = 0) {
   SimulatorOptions sim = testing::ShortSimulation(12.0, stereo);
   sim.camera.outlier_fraction = outlier_fraction;
   EstimatorOptions options = testing::OptionsFor(sim);
   options.landmarks.reanchored_tracks = mode;
   options.landmarks.world_points_in_max_landmarks = points_in_max_landmarks;
+  options.landmarks.max_world_points = max_world_points;
   const SimReplay r = ReplaySimulation(Simulate(sim), options);
   std::printf(
       "%s %s: ATE %.6f m, %lld marginalisations (%lld failed), "
-      "%lld releases, at most %.0f landmarks a step\n",
+      "%lld releases, at most %.0f landmarks a step, %lld world points "
+      "capped, at most %lld held\n",
       stereo ? "stereo" : "mono", ReanchoredTracksName(mode), r.ate_rmse_m,
       static_cast<long long>(r.summary.marginalizations),
       static_cast<long long>(r.summary.marginalization_failures),
       static_cast<long long>(r.summary.points_released),
-      r.summary.landmarks_per_step.Quantile(1.0));
+      r.summary.landmarks_per_step.Quantile(1.0),
+      static_cast<long long>(r.summary.points_capped),
+      static_cast<long long>(r.summary.most_world_points));
   return r;
 }
 
@@ -78,6 +83,23 @@ TEST(EstimatorKeepPoint, MonoOutliersReleasePointsWithoutFailure) {
   EXPECT_EQ(fej.summary.resets, 0);
   EXPECT_EQ(fej.summary.marginalization_failures, 0);
   EXPECT_LT(fej.ate_rmse_m, 0.06);
+}
+
+TEST(EstimatorKeepPoint, MonoWorldPointsWithinTheirBound) {
+  // max_world_points 15 with the points on top of max_landmarks (the
+  // variant of docs/recorded_flights.md): never more than 15 world points
+  // after a marginalisation, the excess marginalised (points_capped), every
+  // marginalisation succeeding, the run as accurate as reuse's bound.
+  const SimReplay capped =
+      ReplayWith(false, ReanchoredTracks::kKeepPointFirstEstimate, 0.0, false,
+                 15);
+  EXPECT_GT(capped.summary.points_capped, 0);
+  EXPECT_LE(capped.summary.most_world_points, 15);
+  EXPECT_GT(capped.summary.most_world_points, 0);
+  EXPECT_EQ(capped.summary.resets, 0);
+  EXPECT_GT(capped.summary.marginalizations, 20);
+  EXPECT_EQ(capped.summary.marginalization_failures, 0);
+  EXPECT_LT(capped.ate_rmse_m, 0.06);
 }
 
 }  // namespace

@@ -143,11 +143,13 @@ void PrintSummary(const EstimatorSummary& s,
       s.residuals_per_step.Quantile(0.5));
   std::printf(
       "  marginalisation       median %.2f ms, max %.2f ms CPU (%lld, "
-      "%lld failed, %lld releases of world points)\n",
+      "%lld failed, %lld releases of world points, %lld world points "
+      "capped, at most %lld held)\n",
       1e3 * s.marginalization_cpu_time_s.Quantile(0.5),
       1e3 * s.marginalization_cpu_time_s.Quantile(1.0),
       (long long)s.marginalizations, (long long)s.marginalization_failures,
-      (long long)s.points_released);
+      (long long)s.points_released, (long long)s.points_capped,
+      (long long)s.most_world_points);
   std::printf(
       "  landmarks per step    median %.0f; outliers removed: %lld "
       "sightings, %lld landmarks; %lld landmarks behind their anchor "
