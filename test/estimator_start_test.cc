@@ -354,7 +354,7 @@ TEST(EstimatorStart, StereoStartInMotionWithinHalfASecond) {
 // only after 0.65 and 0.75 s: their first attempts were refused with
 // rotation misfits of 1.5-96 deg, the chained PnP placing frames tens of
 // degrees off (OpenCV's RANSAC refining from its last sample; estimator/
-// structure_from_motion.cc, PlaceCameraByPnp). Each now starts by 0.5 s and
+// structure_from_motion_pnp.cc, PlaceCameraByPnp). Each now starts by 0.5 s and
 // within 5 % of the true scale.
 TEST(EstimatorStart, StereoStartWithOutliersKeepsItsScale) {
   const struct {
