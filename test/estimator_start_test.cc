@@ -454,15 +454,15 @@ TEST(EstimatorStart, MonoStartWithOutliersStartsWithinTwoSeconds) {
 
 // The hand-held copy with 5 % outlier sightings (init_benchmark --preset
 // handheld_out5 --seeds 20): the joint adjustment that completes a mono
-// start kept the outlier sightings the structure from motion had not judged
-// (features it did not reconstruct, triangulated afterwards) and traded the
-// scale against b_a: main accepted trial 1016 at +87.5 % and 1008 at
-// -50.6 %. The joint adjustment's outlier rounds now apply to mono
-// starts too (init.mono.refine_outlier_rounds): 1008 starts at -41.9 %
-// (2 sightings removed; the rest of its error is the adjustment's trade of
-// b_a against scale, docs/initialisation.md), 1016 by the gyroscope-aided
-// fallback at +17.2 %. With the rounds skipped for mono starts these
-// trials end at -50.6 and +87.5 % again.
+// start removed no outliers (the stereo start's rounds only) and main
+// accepted trial 1016 at +87.5 % and 1008 at -50.6 %. The joint
+// adjustment's outlier rounds now apply to mono starts too
+// (init.mono.refine_outlier_rounds): 1008 starts at -41.9 % (2 landmarks
+// behind their anchor removed; the rest of its error is the adjustment's
+// trade of b_a against scale, docs/initialisation.md), 1016 by the
+// gyroscope-aided fallback at +17.2 % (2 gross outliers removed before its
+// first solve). With the rounds skipped for mono starts these trials end at
+// -50.6 and +87.5 % again.
 TEST(EstimatorStart, MonoStartWithOutliersRemovesThemInItsJointAdjustment) {
   const struct {
     uint32_t seed;
