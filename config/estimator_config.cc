@@ -75,6 +75,7 @@ void ReadInit(const YamlNode& n, InitOptions* o) {
   o->mono.outlier_threshold_px = m.Get<double>("outlier_threshold_px");
   o->mono.outlier_rounds = m.Get<int>("outlier_rounds");
   o->mono.max_outlier_share = m.Get<double>("max_outlier_share");
+  o->mono.refine_outlier_rounds = m.Get<int>("refine_outlier_rounds");
   o->mono.min_imu_excitation = m.Get<double>("min_imu_excitation");
   o->mono.max_scale_uncertainty = m.Get<double>("max_scale_uncertainty");
   o->mono.long_window_s = m.Get<double>("long_window_s");

@@ -233,12 +233,17 @@ InitFailure Estimator::RefineStart(InitMethod method,
   std::unique_ptr<WindowProblem> problem = make_problem();
   if (!problem) return InitFailure::kRefinementFailed;
   const double path_before = PathLength(window_);
-  // A stereo start's landmarks include mismatched pairs and outlier
-  // sightings, which the robust kernel bounds but does not remove: out with
-  // them (as a step's slide would), before the start is judged.
+  // A start's landmarks include outlier sightings (a stereo start's also
+  // mismatched pairs), which the robust kernel bounds but does not remove:
+  // out with them (as a step's slide would), before the start is judged.
+  // Not the static start's (its landmarks are triangulated by the window).
   const StereoInitOptions& stereo = options_.init.stereo;
-  const int rounds =
-      method == InitMethod::kStereo ? stereo.refine_outlier_rounds : 0;
+  int rounds = 0;
+  if (method == InitMethod::kStereo) {
+    rounds = stereo.refine_outlier_rounds;
+  } else if (method == InitMethod::kMono || method == InitMethod::kGyroAided) {
+    rounds = options_.init.mono.refine_outlier_rounds;
+  }
   // Removes what `outliers` lists and builds the problem again; false when
   // it cannot be built.
   auto remove = [&](const OutlierReport& outliers) {

@@ -60,6 +60,7 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
   r.Positive("init.mono.outlier_threshold_px", mono.outlier_threshold_px);
   r.AtLeast("init.mono.outlier_rounds", mono.outlier_rounds, 0);
   r.Positive("init.mono.max_outlier_share", mono.max_outlier_share);
+  r.AtLeast("init.mono.refine_outlier_rounds", mono.refine_outlier_rounds, 0);
   r.NonNegative("init.mono.min_imu_excitation", mono.min_imu_excitation);
   r.Positive("init.mono.max_scale_uncertainty", mono.max_scale_uncertainty);
   r.Positive("init.mono.max_refined_scale_uncertainty",

@@ -74,6 +74,16 @@ struct MonoInitOptions {
   double outlier_threshold_px = 10.0;
   int outlier_rounds = 3;
   double max_outlier_share = 0.2;
+  // Rounds of outlier removal in the joint adjustment that completes a
+  // mono start (SfM or gyroscope-aided), as the stereo start's, at its
+  // thresholds (init.stereo.refine_prescreen_threshold_px before the first
+  // solve, refine_outlier_threshold_px after each); 0: none. The SfM's own
+  // rounds judge sightings up to scale, before the IMU: what they leave
+  // (landmarks whose depth an outlier made, sightings of frames the SfM did
+  // not adjust) drew the adjustment's scale and b_a off, with 5 % outlier
+  // sightings to +87.5 % (docs/initialisation.md, "The mono start in
+  // motion with outliers") [-].
+  int refine_outlier_rounds = 3;
   // IMU excitation: standard deviation over the intervals of the mean
   // specific force dv / T (VINS-Mono's test, which it only warns about).
   // Constant velocity or a constant-speed turn give almost none [m/s^2].

@@ -86,6 +86,8 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.init.mono.outlier_threshold_px, d.init.mono.outlier_threshold_px);
   EXPECT_EQ(o.init.mono.outlier_rounds, d.init.mono.outlier_rounds);
   EXPECT_EQ(o.init.mono.max_outlier_share, d.init.mono.max_outlier_share);
+  EXPECT_EQ(o.init.mono.refine_outlier_rounds,
+            d.init.mono.refine_outlier_rounds);
   EXPECT_EQ(o.init.mono.min_imu_excitation, d.init.mono.min_imu_excitation);
   EXPECT_EQ(o.init.mono.max_scale_uncertainty,
             d.init.mono.max_scale_uncertainty);

@@ -452,6 +452,40 @@ TEST(EstimatorStart, MonoStartWithOutliersStartsWithinTwoSeconds) {
   }
 }
 
+// The hand-held copy with 5 % outlier sightings (init_benchmark --preset
+// handheld_out5 --seeds 20): the joint adjustment that completes a mono
+// start removed no outliers (the stereo start's rounds only) and main
+// accepted trial 1016 at +87.5 % and 1008 at -50.6 %. The joint
+// adjustment's outlier rounds now apply to mono starts too
+// (init.mono.refine_outlier_rounds): 1008 starts at -41.9 % (2 landmarks
+// behind their anchor removed; the rest of its error is the adjustment's
+// trade of b_a against scale, docs/initialisation.md), 1016 by the
+// gyroscope-aided fallback at +17.2 % (2 gross outliers removed before its
+// first solve). With the rounds skipped for mono starts these trials end at
+// -50.6 and +87.5 % again.
+TEST(EstimatorStart, MonoStartWithOutliersRemovesThemInItsJointAdjustment) {
+  const struct {
+    uint32_t seed;
+    double phase_s;
+  } trials[] = {{1008, 5.0}, {1016, 9.0}};
+  for (const auto& trial : trials) {
+    SimulatorOptions o = Preset("handheld", 6.0);
+    o.camera.outlier_fraction = 0.05;
+    o.seed = trial.seed;
+    o.motion.start_phase_s = trial.phase_s;
+    const Simulation sim = Simulate(o);
+    EstimatorOptions options = testing::OptionsFor(o);
+    ASSERT_GT(options.init.mono.refine_outlier_rounds, 0);
+    const testing::SimReplay run = testing::ReplaySimulation(sim, options);
+    ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
+    const StartCheck c = CheckFirstStart(sim, run);
+    EXPECT_LT(std::abs(c.scale_error), 0.45) << "seed " << trial.seed;
+    std::printf("seed %u: %s start after %.2f s, scale %+.1f %%\n",
+                trial.seed, InitMethodName(c.method), c.time_s,
+                100.0 * c.scale_error);
+  }
+}
+
 TEST(EstimatorStart, ZeroVelocityNeverFiresInSlowMotion) {
   // 2 s still, a 2 s blend, then ~0.1 m/s with accelerations the IMU test
   // cannot tell from rest: the image test must keep the detector quiet

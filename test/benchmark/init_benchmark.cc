@@ -40,7 +40,8 @@
 // --stereo-max-change its refine_outlier_rounds, refine_outlier_threshold_px,
 // refine_prescreen_threshold_px and max_refine_scale_change;
 // --mono-outlier-rounds, --mono-outlier-px and --mono-max-outlier-share
-// init.mono's outlier_rounds, outlier_threshold_px and max_outlier_share;
+// init.mono's outlier_rounds, outlier_threshold_px and max_outlier_share,
+// --mono-refine-rounds its refine_outlier_rounds;
 // --min-parallax,
 // --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
 // init.mono's options, to measure them.
@@ -56,6 +57,7 @@
 //                  [--stereo-outlier-rounds N] [--stereo-outlier-px PX]
 //                  [--stereo-prescreen-px PX] [--stereo-max-change X]
 //                  [--mono-outlier-rounds N] [--mono-outlier-px PX]
+//                  [--mono-refine-rounds N]
 //                  [--mono-max-outlier-share X]
 //                  [--ate-from S]... [--ate-runs N] [--ate-separate]
 //                  [--cut S] [--ate-only]

@@ -52,6 +52,9 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   if (args.mono_max_outlier_share > 0.0) {
     o.init.mono.max_outlier_share = args.mono_max_outlier_share;
   }
+  if (args.mono_refine_rounds >= 0) {
+    o.init.mono.refine_outlier_rounds = args.mono_refine_rounds;
+  }
   return o;
 }
 
@@ -111,6 +114,8 @@ Args Parse(int argc, char** argv) {
       a.mono_outlier_rounds = std::stoi(value());
     } else if (s == "--mono-outlier-px") {
       a.mono_outlier_px = std::stod(value());
+    } else if (s == "--mono-refine-rounds") {
+      a.mono_refine_rounds = std::stoi(value());
     } else if (s == "--mono-max-outlier-share") {
       a.mono_max_outlier_share = std::stod(value());
     } else if (s == "--ate-runs") {

@@ -63,6 +63,8 @@ struct Args {
   int mono_outlier_rounds = -1;
   double mono_outlier_px = -1.0;
   double mono_max_outlier_share = -1.0;
+  // init.mono.refine_outlier_rounds (< 0: the config's).
+  int mono_refine_rounds = -1;
   // With --ate (repeatable --ate-from S): also the ATE of both runs over
   // their frames from S seconds after the cut (--ate-separate: after the
   // first frame) on, aligned on those alone.
