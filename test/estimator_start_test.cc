@@ -27,6 +27,17 @@ SimulatorOptions Preset(const std::string& name, double seconds) {
   return o;
 }
 
+// One trial of a preset with 5 % outlier sightings (the init_benchmark's
+// *_out5 copies): its seed and start phase.
+Simulation SimulateWithOutliers(const std::string& preset, double seconds,
+                                uint32_t seed, double phase_s) {
+  SimulatorOptions o = Preset(preset, seconds);
+  o.camera.outlier_fraction = 0.05;
+  o.seed = seed;
+  o.motion.start_phase_s = phase_s;
+  return Simulate(o);
+}
+
 const StampedState& TruthAt(const Simulation& sim, int64_t t_ns) {
   const auto it = std::lower_bound(
       sim.ground_truth.begin(), sim.ground_truth.end(), t_ns,
@@ -362,13 +373,10 @@ TEST(EstimatorStart, StereoStartWithOutliersKeepsItsScale) {
     double phase_s;
   } trials[] = {{1007, 8.25}, {1008, 9.0}, {1010, 10.5}, {1015, 14.25}};
   for (const auto& trial : trials) {
-    SimulatorOptions o = Preset("motion_stereo", 1.0);
-    o.camera.outlier_fraction = 0.05;
-    o.seed = trial.seed;
-    o.motion.start_phase_s = trial.phase_s;
-    const Simulation sim = Simulate(o);
+    const Simulation sim =
+        SimulateWithOutliers("motion_stereo", 1.0, trial.seed, trial.phase_s);
     const testing::SimReplay run =
-        testing::ReplaySimulation(sim, testing::OptionsFor(o));
+        testing::ReplaySimulation(sim, testing::OptionsFor(sim.options));
     ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
     const StartCheck c = CheckFirstStart(sim, run);
     EXPECT_LE(c.time_s, 0.5) << "seed " << trial.seed;
@@ -395,12 +403,9 @@ TEST(EstimatorStart, StereoStartRemovesGrossOutliersBeforeItsFirstSolve) {
     double phase_s;
   } trials[] = {{1008, 6.0}, {1029, 13.875}, {1048, 13.5}};
   for (const auto& trial : trials) {
-    SimulatorOptions o = Preset("motion_stereo", 1.0);
-    o.camera.outlier_fraction = 0.05;
-    o.seed = trial.seed;
-    o.motion.start_phase_s = trial.phase_s;
-    const Simulation sim = Simulate(o);
-    EstimatorOptions options = testing::OptionsFor(o);
+    const Simulation sim =
+        SimulateWithOutliers("motion_stereo", 1.0, trial.seed, trial.phase_s);
+    EstimatorOptions options = testing::OptionsFor(sim.options);
     ASSERT_GT(options.init.stereo.refine_prescreen_threshold_px, 0.0);
     const testing::SimReplay run = testing::ReplaySimulation(sim, options);
     ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
@@ -432,13 +437,10 @@ TEST(EstimatorStart, MonoStartWithOutliersStartsWithinTwoSeconds) {
                 {"motion_mono", 1001, 6.75},
                 {"handheld", 1001, 3.5}};
   for (const auto& trial : trials) {
-    SimulatorOptions o = Preset(trial.preset, 2.5);
-    o.camera.outlier_fraction = 0.05;
-    o.seed = trial.seed;
-    o.motion.start_phase_s = trial.phase_s;
-    const Simulation sim = Simulate(o);
+    const Simulation sim =
+        SimulateWithOutliers(trial.preset, 2.5, trial.seed, trial.phase_s);
     const testing::SimReplay run =
-        testing::ReplaySimulation(sim, testing::OptionsFor(o));
+        testing::ReplaySimulation(sim, testing::OptionsFor(sim.options));
     ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
     const StartCheck c = CheckFirstStart(sim, run);
     EXPECT_EQ(c.method, InitMethod::kMono) << trial.preset << " " << trial.seed;
@@ -446,9 +448,10 @@ TEST(EstimatorStart, MonoStartWithOutliersStartsWithinTwoSeconds) {
     EXPECT_LT(std::abs(c.scale_error), 0.2)
         << trial.preset << " " << trial.seed;
     EXPECT_LT(c.gravity_deg, 2.0) << trial.preset << " " << trial.seed;
-    std::printf("%s seed %u: start after %.2f s, scale %+.1f %%, gravity %.2f deg\n",
-                trial.preset, trial.seed, c.time_s, 100.0 * c.scale_error,
-                c.gravity_deg);
+    std::printf(
+        "%s seed %u: start after %.2f s, scale %+.1f %%, gravity %.2f deg\n",
+        trial.preset, trial.seed, c.time_s, 100.0 * c.scale_error,
+        c.gravity_deg);
   }
 }
 
@@ -469,20 +472,16 @@ TEST(EstimatorStart, MonoStartWithOutliersRemovesThemInItsJointAdjustment) {
     double phase_s;
   } trials[] = {{1008, 5.0}, {1016, 9.0}};
   for (const auto& trial : trials) {
-    SimulatorOptions o = Preset("handheld", 6.0);
-    o.camera.outlier_fraction = 0.05;
-    o.seed = trial.seed;
-    o.motion.start_phase_s = trial.phase_s;
-    const Simulation sim = Simulate(o);
-    EstimatorOptions options = testing::OptionsFor(o);
+    const Simulation sim =
+        SimulateWithOutliers("handheld", 6.0, trial.seed, trial.phase_s);
+    EstimatorOptions options = testing::OptionsFor(sim.options);
     ASSERT_GT(options.init.mono.refine_outlier_rounds, 0);
     const testing::SimReplay run = testing::ReplaySimulation(sim, options);
     ASSERT_FALSE(run.summary.starts.empty()) << DescribeNoStart(run.summary);
     const StartCheck c = CheckFirstStart(sim, run);
     EXPECT_LT(std::abs(c.scale_error), 0.45) << "seed " << trial.seed;
-    std::printf("seed %u: %s start after %.2f s, scale %+.1f %%\n",
-                trial.seed, InitMethodName(c.method), c.time_s,
-                100.0 * c.scale_error);
+    std::printf("seed %u: %s start after %.2f s, scale %+.1f %%\n", trial.seed,
+                InitMethodName(c.method), c.time_s, 100.0 * c.scale_error);
   }
 }
 
