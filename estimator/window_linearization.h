@@ -70,7 +70,8 @@ class WindowLinearization {
   // the iteration has not converged after kMaxPcgIterations (the kept factor
   // too far from S), S is factored afresh exactly as in SolveDamped (that
   // factor is then kept). The inverse depths follow by the same back
-  // substitution.
+  // substitution. A converged iteration does not test S for positive
+  // definiteness (the kept factor's S passed it; a step moves S little).
   bool SolveDampedWithKeptFactor(double lambda, Eigen::VectorXd* dx);
   // Chosen on sim_default seed 1 (docs/speed.md): 1e-6 moves its
   // trajectory by 1.5 um (ATE 3.4 cm) and needs 4.4 iterations on average;
@@ -170,13 +171,21 @@ class WindowLinearization {
     template <typename M>
     explicit KeptFactor(const M&) {}
     template <typename M>
-    KeptFactor& analyzePattern(const M&) { return *this; }
+    KeptFactor& analyzePattern(const M&) {
+      return *this;
+    }
     template <typename M>
-    KeptFactor& factorize(const M&) { return *this; }
+    KeptFactor& factorize(const M&) {
+      return *this;
+    }
     template <typename M>
-    KeptFactor& compute(const M&) { return *this; }
+    KeptFactor& compute(const M&) {
+      return *this;
+    }
     template <typename Rhs>
-    Eigen::VectorXd solve(const Rhs& b) const { return llt->solve(b); }
+    Eigen::VectorXd solve(const Rhs& b) const {
+      return llt->solve(b);
+    }
     Eigen::ComputationInfo info() const { return Eigen::Success; }
     const Eigen::LLT<Eigen::MatrixXd, Eigen::Upper>* llt = nullptr;
   };

@@ -67,17 +67,16 @@ class PointWindow {
         factors_.push_back(
             std::make_unique<WorldPointReprojectionFactor>(xy, 460.0 / 1.5));
       }
-      const Eigen::Vector3d start = seen[k] + 0.05 * Eigen::Vector3d(
-                                                         n(rng), n(rng), n(rng))
-                                                         .normalized();
+      const Eigen::Vector3d start =
+          seen[k] + 0.05 * Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
       for (int d = 0; d < 3; ++d) points_[k][d] = start[d];
     }
     std::vector<PriorBlock> blocks;
     const double* pose1 = window_.Pose(1);
     blocks.push_back({PriorBlockKind::kPose, {pose1, pose1 + 7}});
     for (int k = 0; k < kPoints; ++k) {
-      blocks.push_back(
-          {PriorBlockKind::kEuclidean, {seen[k].x(), seen[k].y(), seen[k].z()}});
+      blocks.push_back({PriorBlockKind::kEuclidean,
+                        {seen[k].x(), seen[k].y(), seen[k].z()}});
     }
     const int m = 6 + 3 * kPoints;
     Eigen::MatrixXd A(m, m);
@@ -210,9 +209,10 @@ TEST(WindowSolverKeptFactor, RelinearisedStepEqualsTheExactOne) {
   EXPECT_LT((inexact - exact).norm(), 1e-5 * exact.norm());
   EXPECT_LT((inexact - exact).lpNorm<Eigen::Infinity>(),
             1e-5 * exact.lpNorm<Eigen::Infinity>());
-  std::printf("kept factor: %d iteration(s), |dx - dx_exact| / |dx_exact| "
-              "= %.2e\n",
-              counts.pcg_iterations, (inexact - exact).norm() / exact.norm());
+  std::printf(
+      "kept factor: %d iteration(s), |dx - dx_exact| / |dx_exact| "
+      "= %.2e\n",
+      counts.pcg_iterations, (inexact - exact).norm() / exact.norm());
 }
 
 // A factor of a system far from the one to solve (the Gauss-Newton damping
