@@ -44,6 +44,7 @@ void ReadSolver(const YamlNode& n, SolverOptions* o) {
   o->function_tolerance = n.Get<double>("function_tolerance");
   o->max_time_s = n.Get<double>("max_time_s");
   o->num_threads = n.Get<int>("num_threads");
+  o->kept_factor_pcg = n.Get<bool>("kept_factor_pcg");
 }
 
 void ReadInit(const YamlNode& n, InitOptions* o) {
@@ -219,7 +220,11 @@ std::string DescribeEstimatorOptions(const EstimatorOptions& o) {
       << (o.solver.max_time_s > 0.0
               ? "<= " + std::to_string(o.solver.max_time_s) + " s (real time), "
               : std::string("no time limit, "))
-      << o.solver.num_threads << " thread(s)\n"
+      << o.solver.num_threads << " thread(s)"
+      << (o.solver.kept_factor_pcg
+              ? ", later linearisations by PCG on the kept factor"
+              : std::string())
+      << "\n"
       << "  start: " << InitMethodName(o.init.method)
       << (o.init.method == InitMethod::kAuto
               ? std::string(" (static, then ") +

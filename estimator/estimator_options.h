@@ -182,6 +182,13 @@ struct SolverOptions {
   // 1 makes every run bit-for-bit repeatable (Ceres sums Jacobian blocks in a
   // thread-dependent order with more threads).
   int num_threads = 1;
+  // Window backend: true solves every linearisation of a step after the
+  // first by conjugate gradients preconditioned with the step's last
+  // Cholesky factor (a fresh factor when they do not converge in 8
+  // iterations): the same steps to a relative residual of 1e-6 at a
+  // fraction of the factor's cost where the reduced system is wide (world
+  // points; docs/speed.md). false: a factor per linearisation.
+  bool kept_factor_pcg = false;
 };
 
 struct EstimatorOptions {

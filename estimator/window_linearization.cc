@@ -30,6 +30,8 @@ void WindowLinearization::SetUp(const WindowSolverProblem& problem) {
   num_reduced_ = 0;
   num_tangent_ = 0;
   max_ambient_jacobian_ = 0;
+  factor_kept_ = false;
+  solve_counts_ = SolveCounts();
   SetUpBlocks();
   SetUpResiduals();
   SetUpLandmarkParts();

@@ -145,7 +145,7 @@ void WindowLinearization::AddSchurOfLandmark(const Landmark& l, double inv_h,
   }
 }
 
-bool WindowLinearization::SolveDamped(double lambda, Eigen::VectorXd* dx) {
+void WindowLinearization::FormReducedSystem(double lambda) {
   S_ = A_rr_;
   Eigen::VectorXd& rhs = rhs_;
   rhs = -g_.head(num_reduced_);
@@ -170,12 +170,16 @@ bool WindowLinearization::SolveDamped(double lambda, Eigen::VectorXd* dx) {
       part += bp.tangent;
     }
   }
-  dx->resize(num_tangent_);
-  if (num_reduced_ > 0) {
-    llt_.compute(S_);
-    if (llt_.info() != Eigen::Success) return false;
-    dx->head(num_reduced_) = llt_.solve(rhs);
-  }
+}
+
+bool WindowLinearization::Factor() {
+  ++solve_counts_.factorizations;
+  llt_.compute(S_);
+  factor_kept_ = llt_.info() == Eigen::Success;
+  return factor_kept_;
+}
+
+bool WindowLinearization::BackSubstitute(Eigen::VectorXd* dx) const {
   for (size_t k = 0; k < landmarks_.size(); ++k) {
     const int o = num_reduced_ + static_cast<int>(k);
     double w_dx = 0.0;
@@ -188,9 +192,43 @@ bool WindowLinearization::SolveDamped(double lambda, Eigen::VectorXd* dx) {
                   .dot(dx->segment(bp.offset, bp.tangent));
       part += bp.tangent;
     }
-    (*dx)[o] = inv_h[k] == 0.0 ? 0.0 : -(g_[o] + w_dx) * inv_h[k];
+    (*dx)[o] = inv_h_[k] == 0.0 ? 0.0 : -(g_[o] + w_dx) * inv_h_[k];
   }
   return dx->allFinite();
+}
+
+bool WindowLinearization::SolveDamped(double lambda, Eigen::VectorXd* dx) {
+  FormReducedSystem(lambda);
+  dx->resize(num_tangent_);
+  if (num_reduced_ > 0) {
+    if (!Factor()) return false;
+    dx->head(num_reduced_) = llt_.solve(rhs_);
+  }
+  return BackSubstitute(dx);
+}
+
+bool WindowLinearization::SolveDampedWithKeptFactor(double lambda,
+                                                    Eigen::VectorXd* dx) {
+  if (!factor_kept_ || num_reduced_ == 0) return SolveDamped(lambda, dx);
+  FormReducedSystem(lambda);
+  dx->resize(num_tangent_);
+  // Preconditioned by the kept factor L of S_old: the iteration works on
+  // L^-1 S L^-T, which is I + L^-1 (S - S_old) L^-T, so it converges in a few
+  // steps while S stays near S_old (one linearisation to the next).
+  pcg_.preconditioner().llt = &llt_;
+  pcg_.setMaxIterations(kMaxPcgIterations);
+  pcg_.setTolerance(kPcgTolerance);
+  pcg_.compute(S_);
+  dx->head(num_reduced_) = pcg_.solve(rhs_);
+  solve_counts_.pcg_iterations += static_cast<int>(pcg_.iterations());
+  if (pcg_.info() == Eigen::Success && dx->head(num_reduced_).allFinite()) {
+    ++solve_counts_.pcg_solves;
+    return BackSubstitute(dx);
+  }
+  ++solve_counts_.pcg_fallbacks;
+  if (!Factor()) return false;
+  dx->head(num_reduced_) = llt_.solve(rhs_);
+  return BackSubstitute(dx);
 }
 
 double WindowLinearization::QuadraticForm(const Eigen::VectorXd& v) const {

@@ -289,6 +289,7 @@ ceres::Solver::Summary WindowProblem::Solve(const SolverOptions& options,
   o.max_iterations = options.max_iterations;
   o.max_time_s = options.max_time_s;
   o.function_tolerance = options.function_tolerance;
+  o.kept_factor_pcg = options.kept_factor_pcg;
   return solver->Solve(o);
 }
 

@@ -30,8 +30,9 @@ constexpr double kMuIncrease = 10.0;
 // the linearisation only, so a rejected step re-uses them.
 class Dogleg {
  public:
-  // Gauss-Newton step and Cauchy point at the current linearisation.
-  void Linearized(WindowLinearization* lin) {
+  // Gauss-Newton step and Cauchy point at the current linearisation;
+  // kept_factor: solved by WindowLinearization::SolveDampedWithKeptFactor.
+  void Linearized(WindowLinearization* lin, bool kept_factor) {
     D_ = (1.0 + lin->jtj_diagonal().array().max(0.0).sqrt()).matrix();
     const Eigen::VectorXd& g = lin->gradient();
     g_s_ = g.cwiseQuotient(D_);
@@ -45,7 +46,8 @@ class Dogleg {
     // system is not positive definite (as Ceres' mu).
     gn_ok_ = false;
     for (; mu_ <= kMaxMu; mu_ *= kMuIncrease) {
-      if (lin->SolveDamped(mu_, &gauss_newton_)) {
+      if (kept_factor ? lin->SolveDampedWithKeptFactor(mu_, &gauss_newton_)
+                      : lin->SolveDamped(mu_, &gauss_newton_)) {
         gn_ok_ = true;
         mu_ = std::max(kMinMu, 2.0 * mu_ / kMuIncrease);
         break;
@@ -172,7 +174,7 @@ ceres::Solver::Summary WindowSolver::Solve(const WindowSolverOptions& options) {
   Dogleg dogleg;
   if (!lm) {
     t = Clock::now();
-    dogleg.Linearized(&lin);
+    dogleg.Linearized(&lin, options.kept_factor_pcg);
     summary.linear_solver_time_in_seconds += Since(t);
   }
   Eigen::VectorXd dx;
@@ -187,8 +189,11 @@ ceres::Solver::Summary WindowSolver::Solve(const WindowSolverOptions& options) {
     it.trust_region_radius = radius;
     t = Clock::now();
     double scaled_norm = 0.0;
-    const bool have_step = lm ? lin.SolveDamped(1.0 / radius, &dx)
-                              : dogleg.Step(radius, &dx, &scaled_norm);
+    const bool have_step =
+        !lm ? dogleg.Step(radius, &dx, &scaled_norm)
+        : options.kept_factor_pcg
+            ? lin.SolveDampedWithKeptFactor(1.0 / radius, &dx)
+            : lin.SolveDamped(1.0 / radius, &dx);
     summary.linear_solver_time_in_seconds += Since(t);
     double new_cost = std::numeric_limits<double>::infinity();
     double model_decrease = 0.0;
@@ -264,7 +269,7 @@ ceres::Solver::Summary WindowSolver::Solve(const WindowSolverOptions& options) {
     }
     if (!lm) {
       t = Clock::now();
-      dogleg.Linearized(&lin);
+      dogleg.Linearized(&lin, options.kept_factor_pcg);
       summary.linear_solver_time_in_seconds += Since(t);
     }
   }

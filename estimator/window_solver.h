@@ -99,6 +99,12 @@ struct WindowSolverOptions {
   double parameter_tolerance = 1e-8;  // |step| / (|x| + tol) [-]
   double initial_trust_region_radius = 1e4;
   double min_relative_decrease = 1e-3;  // rho below this: step rejected
+  // Off: every linearisation's reduced system is factored (Cholesky). On:
+  // only the first of a Solve is; later ones are solved by conjugate
+  // gradients preconditioned with the last factor, to a relative residual of
+  // 1e-6, a fresh factor when that needs more than 8 iterations
+  // (WindowLinearization::SolveDampedWithKeptFactor; docs/speed.md).
+  bool kept_factor_pcg = false;
 };
 
 // One step's problem. Clear() keeps the vectors' capacity, so a solver used

@@ -63,6 +63,7 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.solver.max_iterations, d.solver.max_iterations);
   EXPECT_EQ(o.solver.function_tolerance, d.solver.function_tolerance);
   EXPECT_EQ(o.solver.num_threads, 1);
+  EXPECT_EQ(o.solver.kept_factor_pcg, d.solver.kept_factor_pcg);
   EXPECT_EQ(o.init.method, d.init.method);
   EXPECT_EQ(o.init.reinitialize_after_reset, d.init.reinitialize_after_reset);
   EXPECT_EQ(o.init.max_rotation_misfit_deg, d.init.max_rotation_misfit_deg);
