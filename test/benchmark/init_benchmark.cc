@@ -44,7 +44,10 @@
 // --mono-refine-rounds its refine_outlier_rounds;
 // --min-parallax,
 // --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
-// init.mono's options, to measure them.
+// init.mono's options, to measure them. --estimator-config FILE starts the
+// estimator options from FILE's estimator: block (for example
+// config/stereo.yaml; use_stereo and gravity stay the preset's) instead of
+// the built-in defaults; the overrides apply on top.
 //
 //   init_benchmark [--preset NAME]... [--seeds N] [--first-seed N]
 //                  [--phase-shift X] [--drop-outliers] [--seconds S] [--ate]
@@ -60,7 +63,7 @@
 //                  [--mono-refine-rounds N]
 //                  [--mono-max-outlier-share X]
 //                  [--ate-from S]... [--ate-runs N] [--ate-separate]
-//                  [--cut S] [--ate-only]
+//                  [--cut S] [--ate-only] [--estimator-config FILE]
 // NAME: motion_mono, motion_stereo, handheld (default: all three), or any
 // config/sim_NAME.yaml. Deterministic; not run by ctest.
 

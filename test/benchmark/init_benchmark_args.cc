@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "config/estimator_config.h"
+#include "config/yaml_reader.h"
 #include "test/testing/sim_replay.h"
 
 namespace vio {
@@ -10,6 +12,11 @@ namespace vio {
 EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
                            const Args& args) {
   EstimatorOptions o = testing::OptionsFor(simulation);
+  if (!args.estimator_config.empty()) {
+    o = ReadEstimatorOptions(YamlNode::LoadFile(args.estimator_config));
+    o.use_stereo = simulation.camera.stereo;
+    o.gravity_magnitude = simulation.gravity_m_s2;
+  }
   if (args.long_window_s > 0.0) o.init.mono.long_window_s = args.long_window_s;
   if (args.max_scale_sigma > 0.0) {
     o.init.mono.max_refined_scale_uncertainty = args.max_scale_sigma;
@@ -128,6 +135,8 @@ Args Parse(int argc, char** argv) {
     } else if (s == "--ate-only") {
       a.ate = true;
       a.ate_only = true;
+    } else if (s == "--estimator-config") {
+      a.estimator_config = value();
     } else if (s == "--cut") {
       a.cut_s = std::stod(value());
     } else if (s == "--attempts") {

@@ -65,6 +65,11 @@ struct Args {
   double mono_max_outlier_share = -1.0;
   // init.mono.refine_outlier_rounds (< 0: the config's).
   int mono_refine_rounds = -1;
+  // --estimator-config FILE: the estimator options start from that
+  // configuration's estimator: block (use_stereo and gravity still the
+  // preset's) instead of the built-in defaults; the overrides above apply
+  // on top. Empty: the built-in defaults (EstimatorOptions).
+  std::string estimator_config;
   // With --ate (repeatable --ate-from S): also the ATE of both runs over
   // their frames from S seconds after the cut (--ate-separate: after the
   // first frame) on, aligned on those alone.
