@@ -19,6 +19,25 @@ double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
 }
 
+// The square root's path of one marginalisation, into the summary.
+void CountSquareRoot(const MarginalizationResult& result,
+                     EstimatorSummary* summary) {
+  switch (result.square_root) {
+    case PriorSquareRoot::kCholesky:
+      ++summary->prior_cholesky;
+      break;
+    case PriorSquareRoot::kBlockFloor:
+      ++summary->prior_block_floor;
+      break;
+    case PriorSquareRoot::kNullSpaceFloor:
+      ++summary->prior_subspace_floor;
+      break;
+    case PriorSquareRoot::kEigen:
+      ++summary->prior_eigen;
+      break;
+  }
+}
+
 }  // namespace
 
 void Estimator::Solve(WindowProblem* problem) {
@@ -122,6 +141,7 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
     for (const int64_t id : problem.capped_points()) features_.Forget(id);
     summary_.points_capped +=
         static_cast<int64_t>(problem.capped_points().size());
+    CountSquareRoot(result, &summary_);
     // The extrinsic and gap-bias priors were folded factors: now in prior_.
     extrinsic_prior_.reset();
     extrinsic_prior_blocks_.clear();
