@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 #include "estimator/estimator.h"
 #include "estimator/marginalization.h"
@@ -131,17 +132,17 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ThreadCpuSeconds();
   const MarginalizationProblem m = problem.OldestFrameMarginalization(outliers);
-  const MarginalizationResult result = Marginalize(m);
+  MarginalizationResult result = Marginalize(m);
   ++summary_.marginalizations;
   if (result.ok()) {
-    prior_ = result.MakePrior();
     prior_blocks_ = result.kept_parameter_blocks;
+    CountSquareRoot(result, &summary_);
+    prior_ = std::move(result).MakePrior();  // result's matrices moved out
     // Every sighting of a capped point is in the prior now: its track, if
     // it goes on, starts again as a new landmark.
     for (const int64_t id : problem.capped_points()) features_.Forget(id);
     summary_.points_capped +=
         static_cast<int64_t>(problem.capped_points().size());
-    CountSquareRoot(result, &summary_);
     // The extrinsic and gap-bias priors were folded factors: now in prior_.
     extrinsic_prior_.reset();
     extrinsic_prior_blocks_.clear();

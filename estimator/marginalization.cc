@@ -263,7 +263,7 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
   if (!result.jacobian.allFinite() || !result.residual0.allFinite()) {
     return fail("the prior's J or r0 is not finite");
   }
-  result.information = H_star;
+  result.information = std::move(H_star);
   result.gradient = -b_star;
   for (const MarginalizationParameterBlock* p : kept) {
     result.kept_parameter_blocks.push_back(p->values);
@@ -283,13 +283,21 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
   return result;
 }
 
-std::unique_ptr<MarginalizationPrior> MarginalizationResult::MakePrior() const {
+std::unique_ptr<MarginalizationPrior> MarginalizationResult::MakePrior()
+    const& {
   // Without floored eigenvalues J^T J is H* (to rounding), with them it is
   // floored_information when the square root was taken from it: the prior
   // need not form it again.
   return std::make_unique<MarginalizationPrior>(
       kept_blocks, jacobian, residual0,
       num_floored_eigenvalues == 0 ? information : floored_information);
+}
+
+std::unique_ptr<MarginalizationPrior> MarginalizationResult::MakePrior() && {
+  Eigen::MatrixXd& J_T_J =
+      num_floored_eigenvalues == 0 ? information : floored_information;
+  return std::make_unique<MarginalizationPrior>(
+      kept_blocks, std::move(jacobian), std::move(residual0), std::move(J_T_J));
 }
 
 MarginalizationResidualBlock PriorResidualBlock(

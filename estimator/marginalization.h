@@ -139,8 +139,11 @@ struct MarginalizationResult {
   bool ok() const { return status != MarginalizationStatus::kFailed; }
 
   // The prior for the next window (Ceres takes ownership when it is added
-  // with kept_parameter_blocks). Requires ok().
-  std::unique_ptr<MarginalizationPrior> MakePrior() const;
+  // with kept_parameter_blocks). Requires ok(). The second moves J, r0 and
+  // the information into it (k x k each, 0.3 MB with world points) and
+  // leaves them empty here.
+  std::unique_ptr<MarginalizationPrior> MakePrior() const&;
+  std::unique_ptr<MarginalizationPrior> MakePrior() &&;
 };
 
 // Runs one marginalisation step. Never throws on bad values and never returns

@@ -122,6 +122,27 @@ bool LargestEigenvalue(const Eigen::MatrixXd& H, double* lambda_max) {
   return false;
 }
 
+namespace {
+
+// True when the symmetric block B - s I has a Cholesky factor (every
+// eigenvalue of B above s); without allocating for the usual block sizes.
+template <typename Block>
+bool AllAbove(const Block& B, double s) {
+  constexpr int kSmall = 9;  // a speed-bias block, the largest kept one
+  if (B.rows() <= kSmall) {
+    using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0,
+                                kSmall, kSmall>;
+    Small shifted = B;
+    shifted.diagonal().array() -= s;
+    return Eigen::LLT<Small>(shifted).info() == Eigen::Success;
+  }
+  Eigen::MatrixXd shifted = B;
+  shifted.diagonal().array() -= s;
+  return Eigen::LLT<Eigen::MatrixXd>(shifted).info() == Eigen::Success;
+}
+
+}  // namespace
+
 bool FloorBlockDirections(const Eigen::MatrixXd& H, double floor,
                           const std::vector<CoordinateBlock>& blocks,
                           Eigen::MatrixXd* H_floored, int* floored) {
@@ -141,9 +162,7 @@ bool FloorBlockDirections(const Eigen::MatrixXd& H, double floor,
   T.diagonal().array() -= (1.0 - kFloorBand) * s_min;
   int m = 0;
   for (const CoordinateBlock& b : blocks) {
-    Eigen::MatrixXd shifted = H.block(b.offset, b.offset, b.size, b.size);
-    shifted.diagonal().array() -= s_min;
-    if (Eigen::LLT<Eigen::MatrixXd>(shifted).info() == Eigen::Success) {
+    if (AllAbove(H.block(b.offset, b.offset, b.size, b.size), s_min)) {
       continue;  // every eigenvalue of H_bb above s_min
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(
@@ -165,7 +184,9 @@ bool FloorBlockDirections(const Eigen::MatrixXd& H, double floor,
   if (m == 0) return false;
   // (b) Sylvester's inertia: T positive definite <=> every eigenvalue of H_f
   // off the floored directions above (1 - kFloorBand) s_min.
-  if (Eigen::LLT<Eigen::MatrixXd>(T).info() != Eigen::Success) return false;
+  if (Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>>(T).info() != Eigen::Success) {
+    return false;  // (factored in place: T is not needed after)
+  }
   *H_floored = std::move(H_f);
   *floored = m;
   return true;
