@@ -144,16 +144,20 @@ int SquareRoot(const Eigen::MatrixXd& H_star, const Eigen::VectorXd& b_star,
                Eigen::MatrixXd* J, Eigen::VectorXd* r0,
                Eigen::MatrixXd* floored_information, PriorSquareRoot* path) {
   floored_information->resize(0, 0);
-  const Eigen::LLT<Eigen::MatrixXd> llt(H_star);
-  if (llt.info() == Eigen::Success) {
+  // A factor usable unfloored: every pivot^2 positive and at least floor
+  // times the largest.
+  auto usable = [floor](const Eigen::LLT<Eigen::MatrixXd>& llt) {
+    if (llt.info() != Eigen::Success) return false;
     const Eigen::VectorXd pivots = llt.matrixLLT().diagonal().cwiseAbs2();
-    if (pivots.minCoeff() > 0.0 &&
-        pivots.minCoeff() >= floor * pivots.maxCoeff()) {
-      *J = llt.matrixU();
-      *r0 = -llt.matrixL().solve(b_star);
-      *path = PriorSquareRoot::kCholesky;
-      return 0;
-    }
+    return pivots.minCoeff() > 0.0 &&
+           pivots.minCoeff() >= floor * pivots.maxCoeff();
+  };
+  const Eigen::LLT<Eigen::MatrixXd> llt(H_star);
+  if (usable(llt)) {
+    *J = llt.matrixU();
+    *r0 = -llt.matrixL().solve(b_star);
+    *path = PriorSquareRoot::kCholesky;
+    return 0;
   }
   Eigen::MatrixXd H_f;
   int null_floored = 0;
@@ -164,8 +168,13 @@ int SquareRoot(const Eigen::MatrixXd& H_star, const Eigen::VectorXd& b_star,
             ? FloorBlockDirections(H_star, floor, blocks, &H_f, &null_floored)
             : FloorNullSpace(H_star, floor, &H_f, &null_floored);
     if (!found) continue;
+    // The block floor's H_f is held to H*'s own test (null_space_floor.h,
+    // (b)); the subspace floor has checked its spectrum already.
     const Eigen::LLT<Eigen::MatrixXd> llt_f(H_f);
-    if (llt_f.info() != Eigen::Success) continue;
+    if (way == PriorSquareRoot::kBlockFloor ? !usable(llt_f)
+                                            : llt_f.info() != Eigen::Success) {
+      continue;
+    }
     *J = llt_f.matrixU();
     *r0 = -llt_f.matrixL().solve(b_star);
     *floored_information = std::move(H_f);

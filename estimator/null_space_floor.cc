@@ -155,11 +155,8 @@ bool FloorBlockDirections(const Eigen::MatrixXd& H, double floor,
   double lambda_max = 0.0;
   if (!LargestEigenvalue(H, &lambda_max) || !(lambda_max > 0.0)) return false;
   const double s_min = floor * lambda_max;
-  // The blocks' directions below s_min: H_f = H + (s_min - t) v v^T each,
-  // and T = H_f + s_min v v^T - (1 - kFloorBand) s_min I for (b).
+  // The blocks' directions below s_min: H_f = H + (s_min - t) v v^T each.
   Eigen::MatrixXd H_f = H;
-  Eigen::MatrixXd T = H;
-  T.diagonal().array() -= (1.0 - kFloorBand) * s_min;
   int m = 0;
   for (const CoordinateBlock& b : blocks) {
     if (AllAbove(H.block(b.offset, b.offset, b.size, b.size), s_min)) {
@@ -175,18 +172,12 @@ bool FloorBlockDirections(const Eigen::MatrixXd& H, double floor,
       Eigen::VectorXd residual = H.middleCols(b.offset, b.size) * u;
       residual.segment(b.offset, b.size) -= t * u;
       if (!(residual.norm() <= kNullFraction * s_min)) return false;
-      const Eigen::MatrixXd uuT = u * u.transpose();
-      H_f.block(b.offset, b.offset, b.size, b.size) += (s_min - t) * uuT;
-      T.block(b.offset, b.offset, b.size, b.size) += (2.0 * s_min - t) * uuT;
+      H_f.block(b.offset, b.offset, b.size, b.size) +=
+          (s_min - t) * (u * u.transpose());
       ++m;
     }
   }
   if (m == 0) return false;
-  // (b) Sylvester's inertia: T positive definite <=> every eigenvalue of H_f
-  // off the floored directions above (1 - kFloorBand) s_min.
-  if (Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>>(T).info() != Eigen::Success) {
-    return false;  // (factored in place: T is not needed after)
-  }
   *H_floored = std::move(H_f);
   *floored = m;
   return true;

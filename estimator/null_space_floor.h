@@ -67,33 +67,35 @@ constexpr int kSubspaceSteps = 6;
 //   (an eigenvalue of H_bb below s_min: H* has one too, v^T H v = u^T H_bb u)
 //   is eigen-decomposed: every u with H_bb u = t u, t < s_min, gives v;
 //   H_f = H + sum_i (s_min - t_i) v_i v_i^T,
-// which is the eigen path's H_f (to about kFloorBand * s_min) when
+// which is the eigen path's H_f (to rounding) when
 //   (a) each v_i is an eigenvector of H: |H v_i - t_i v_i| <= kNullFraction
-//       * s_min (blocks do not overlap, so the v_i are orthonormal);
-//   (b) no other eigenvalue of H lies below s_min, checked to (1 - kFloorBand)
-//       s_min by Sylvester's inertia: H_f + s_min V V^T - (1 - kFloorBand)
-//       s_min I has a Cholesky factor (along the v_i it is about s_min, far
-//       above the factor's rounding of about k * 1e-16 of the largest
-//       eigenvalue, 2e-4 s_min at the shipped floor and k = 200).
-// About k^3 / 3 flops (the factor of (b)) against the eigenvalues' 4 k^3 / 3
-// and the eigen path's 10 k^3.
+//       * s_min (blocks do not overlap, so the v_i are orthonormal; else
+//       refused);
+//   (b) no other eigenvalue of H lies below s_min. That is not checked here
+//       (a check by Sylvester's inertia costs a second Cholesky factor, as
+//       much as the rest of the floor): the caller accepts H_f when its
+//       Cholesky factor passes the test H* itself must pass to be used
+//       unfloored (marginalization.cc: every pivot^2 at least the floor
+//       times the largest), which an exact zero elsewhere fails. An
+//       eigenvalue in (0, s_min) outside the blocks that passes it stays as
+//       it is, as it would in H* on that path. (On sim_default and
+//       sim_stereo the inertia check, tried, never refused: docs/speed.md.)
+// About k^2 per Lanczos step and the blocks' small eigen solves, then the
+// caller's Cholesky factor (k^3 / 3), against the eigenvalues' 4 k^3 / 3 and
+// the eigen path's 10 k^3.
 struct CoordinateBlock {
   int offset = 0;  // first coordinate in H
   int size = 0;
 };
 
 // Writes H_f and m (the number of floored directions, > 0) and returns true
-// when (a) and (b) hold and Lanczos converged; false otherwise (nothing
-// written): the caller takes another path. blocks: consecutive,
-// non-overlapping, within H (else false). Also false when no block has an
-// eigenvalue below s_min or the largest eigenvalue is not > 0.
+// when (a) holds and Lanczos converged; false otherwise (nothing written):
+// the caller takes another path. blocks: consecutive, non-overlapping,
+// within H (else false). Also false when no block has an eigenvalue below
+// s_min or the largest eigenvalue is not > 0.
 bool FloorBlockDirections(const Eigen::MatrixXd& H, double floor,
                           const std::vector<CoordinateBlock>& blocks,
                           Eigen::MatrixXd* H_floored, int* floored);
-// (b)'s band, a fraction of s_min: an eigenvalue in [(1 - kFloorBand)
-// s_min, s_min) is left as it is (the eigen path would raise it by at most
-// this fraction of s_min).
-constexpr double kFloorBand = 1e-3;
 
 // The largest eigenvalue of the symmetric H by Lanczos with full
 // reorthogonalisation from a seeded start: true when the Ritz value's error
