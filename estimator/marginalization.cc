@@ -261,9 +261,9 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
     return fail("the Schur complement is not finite");
   }
   result.num_floored_eigenvalues = SquareRoot(
-      H_star, b_star, options.prior_eigenvalue_floor, KeptCoordinateBlocks(kept),
-      &result.jacobian,
-      &result.residual0, &result.floored_information, &result.square_root);
+      H_star, b_star, options.prior_eigenvalue_floor,
+      KeptCoordinateBlocks(kept), &result.jacobian, &result.residual0,
+      &result.floored_information, &result.square_root);
   if (result.num_floored_eigenvalues < 0) {
     return fail("no information is left on the kept blocks (" +
                 std::to_string(result.num_skipped_residual_blocks) +

@@ -298,8 +298,7 @@ bool MarginalizationSystem::AccumulatePrior(int k) {
     const int pa = prior->TangentOffset(static_cast<int>(a));
     b_.segment(sa.offset, ta) -= g.segment(pa, ta);
     for (size_t c = 0; c < n; ++c) {
-      if (param_slots_[c] == nullptr ||
-          param_slots_[c]->offset < sa.offset) {
+      if (param_slots_[c] == nullptr || param_slots_[c]->offset < sa.offset) {
         continue;
       }
       const Slot& sc = *param_slots_[c];

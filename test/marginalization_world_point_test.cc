@@ -112,10 +112,12 @@ class WorldPointFloor : public ::testing::Test {
 
   MarginalizationProblem Problem(bool gauge_free) {
     MarginalizationProblem m;
-    for (auto& pose : poses_) m.parameter_blocks.push_back({pose.data(), 7, &manifold_});
+    for (auto& pose : poses_)
+      m.parameter_blocks.push_back({pose.data(), 7, &manifold_});
     m.parameter_blocks.push_back({T_b_c_.data(), 7, &manifold_});
     for (auto& p : points_) m.parameter_blocks.push_back({p.data(), 3});
-    if (!gauge_free) m.residual_blocks.push_back({prior_.get(), nullptr, {poses_[0].data()}});
+    if (!gauge_free)
+      m.residual_blocks.push_back({prior_.get(), nullptr, {poses_[0].data()}});
     m.residual_blocks.push_back(
         {extrinsic_prior_.get(), nullptr, {T_b_c_.data()}});
     for (int i = 0; i < 2; ++i) {
@@ -123,9 +125,10 @@ class WorldPointFloor : public ::testing::Test {
           {links_[i].get(), nullptr, {poses_[i].data(), poses_[i + 1].data()}});
     }
     for (int i = 0; i < kPoints; ++i) {
-      m.residual_blocks.push_back({sightings_[i].get(), &huber_,
-                                   {poses_[0].data(), T_b_c_.data(),
-                                    points_[i].data()}});
+      m.residual_blocks.push_back(
+          {sightings_[i].get(),
+           &huber_,
+           {poses_[0].data(), T_b_c_.data(), points_[i].data()}});
     }
     m.marginalized = {poses_[0].data()};
     return m;

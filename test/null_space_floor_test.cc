@@ -170,10 +170,10 @@ TEST(LargestEigenvalue, EqualsTheEigenSolversOnAPriorLikeSpectrum) {
   Eigen::MatrixXd V;
   for (const int zeros : {0, 7}) {
     const Eigen::MatrixXd H = WithSpectrum(PriorLikeSpectrum(120, zeros), &V);
-    const double expected =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly)
-            .eigenvalues()
-            .maxCoeff();
+    const double expected = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(
+                                H, Eigen::EigenvaluesOnly)
+                                .eigenvalues()
+                                .maxCoeff();
     double lambda_max = 0.0;
     ASSERT_TRUE(LargestEigenvalue(H, &lambda_max));
     EXPECT_NEAR(lambda_max, expected, 1e-12 * expected) << zeros;
@@ -185,7 +185,7 @@ TEST(LargestEigenvalue, EqualsTheEigenSolversOnAPriorLikeSpectrum) {
 // grown since): H_f equals the eigen path's.
 TEST(FloorBlockDirections, EqualsTheEigenPathOnBlockEigenvectors) {
   const std::vector<CoordinateBlock> blocks = PriorBlocks(20, 10);
-  const std::vector<CoordinateBlock> at = {blocks[0], blocks[3], blocks[4],
+  const std::vector<CoordinateBlock> at = {blocks[0], blocks[3],  blocks[4],
                                            blocks[9], blocks[15], blocks[19],
                                            blocks[12]};
   const Eigen::VectorXd prior_like = AboveTheFloor(113);  // k = 120
@@ -234,9 +234,8 @@ TEST(FloorBlockDirections, RefusesWhatItCannotFloor) {
     // One more eigenvalue below the floor, its eigenvector y across blocks:
     // the blocks' two are floored, y keeps its eigenvalue.
     Eigen::MatrixXd V_extra;
-    const Eigen::MatrixXd H_extra =
-        WithBlockEigenvectors(prior_like.head(57), at, Eigen::VectorXd::Zero(2),
-                              &V_extra, &extra);
+    const Eigen::MatrixXd H_extra = WithBlockEigenvectors(
+        prior_like.head(57), at, Eigen::VectorXd::Zero(2), &V_extra, &extra);
     ASSERT_TRUE(FloorBlockDirections(H_extra, kFloor, blocks, &H_f, &floored));
     EXPECT_EQ(floored, 2);
     const Eigen::VectorXd y = V_extra.col(2);
@@ -256,8 +255,8 @@ TEST(FloorBlockDirections, RefusesWhatItCannotFloor) {
       0.1 * s_min * (V.col(0) * w.transpose() + w * V.col(0).transpose());
   EXPECT_FALSE(FloorBlockDirections(coupled, kFloor, blocks, &H_f, &floored));
   // Overlapping blocks are refused.
-  EXPECT_FALSE(FloorBlockDirections(H, kFloor, {{0, 3}, {2, 3}}, &H_f,
-                                    &floored));
+  EXPECT_FALSE(
+      FloorBlockDirections(H, kFloor, {{0, 3}, {2, 3}}, &H_f, &floored));
 }
 
 }  // namespace
