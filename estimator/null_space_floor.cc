@@ -72,10 +72,6 @@ bool FloorNullSpace(const Eigen::MatrixXd& H, double floor,
   return true;
 }
 
-}  // namespace vio
-
-namespace vio {
-
 bool LargestEigenvalue(const Eigen::MatrixXd& H, double* lambda_max) {
   const int k = static_cast<int>(H.rows());
   if (k == 0) return false;

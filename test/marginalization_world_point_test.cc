@@ -98,6 +98,9 @@ class WorldPointFloor : public ::testing::Test {
     Matrix6d W = Matrix6d::Identity() * 100.0;
     prior_ = std::make_unique<PosePriorTestFactor>(
         Eigen::Vector3d(0.01, 0.0, 0.0), Rotation(0.1, {0.3, 1.0, 0.2}), W);
+    weak_prior_ = std::make_unique<PosePriorTestFactor>(
+        Eigen::Vector3d(0.01, 0.0, 0.0), Rotation(0.1, {0.3, 1.0, 0.2}),
+        W * 1e-6);
     extrinsic_prior_ = std::make_unique<PosePriorTestFactor>(
         Eigen::Vector3d(0.05, -0.02, 0.01), Rotation(1.5, {0.1, 0.05, 1.0}),
         W * 10.0);
@@ -110,14 +113,20 @@ class WorldPointFloor : public ::testing::Test {
     }
   }
 
-  MarginalizationProblem Problem(bool gauge_free) {
+  // gauge_free: pose 0 without its prior; weak_gauge: with a prior 1e-6 as
+  // strong (its directions below the floor but not zero).
+  MarginalizationProblem Problem(bool gauge_free, bool weak_gauge = false) {
     MarginalizationProblem m;
     for (auto& pose : poses_)
       m.parameter_blocks.push_back({pose.data(), 7, &manifold_});
     m.parameter_blocks.push_back({T_b_c_.data(), 7, &manifold_});
     for (auto& p : points_) m.parameter_blocks.push_back({p.data(), 3});
-    if (!gauge_free)
+    if (weak_gauge) {
+      m.residual_blocks.push_back(
+          {weak_prior_.get(), nullptr, {poses_[0].data()}});
+    } else if (!gauge_free) {
       m.residual_blocks.push_back({prior_.get(), nullptr, {poses_[0].data()}});
+    }
     m.residual_blocks.push_back(
         {extrinsic_prior_.get(), nullptr, {T_b_c_.data()}});
     for (int i = 0; i < 2; ++i) {
@@ -151,7 +160,7 @@ class WorldPointFloor : public ::testing::Test {
   std::array<std::array<double, 3>, kPoints> points_{};
   std::array<std::array<double, 3>, kPoints> first_{};
   std::vector<std::unique_ptr<WorldPointReprojectionFactor>> sightings_;
-  std::unique_ptr<PosePriorTestFactor> prior_, extrinsic_prior_;
+  std::unique_ptr<PosePriorTestFactor> prior_, weak_prior_, extrinsic_prior_;
   std::vector<std::unique_ptr<RelativePoseTestFactor>> links_;
 };
 
@@ -221,6 +230,24 @@ TEST_F(WorldPointFloor, GaugeFreeNullSpaceTakesAnotherPathToTheSameFloor) {
   const Eigen::MatrixXd expected =
       EigenPathFloor(result.information, &eigen_floored);
   EXPECT_EQ(eigen_floored, kPoints + 6);  // the rays and the gauge
+  EXPECT_EQ(result.num_floored_eigenvalues, kPoints + 6);
+  const Eigen::MatrixXd& J = result.jacobian;
+  EXPECT_LT((J.transpose() * J - expected).cwiseAbs().maxCoeff(),
+            1e-12 * expected.cwiseAbs().maxCoeff());
+}
+
+// The gauge held by a prior 1e-6 as strong: six eigenvalues of H* below the
+// floor, not zero, across all blocks. H_f of the block floor keeps them and
+// has a Cholesky factor, but its pivots fail the test H* must pass to be
+// used unfloored: another path floors all twelve, as the eigen path does.
+TEST_F(WorldPointFloor, WeakGaugeBelowTheFloorIsNotLeftUnfloored) {
+  const MarginalizationResult result = Marginalize(Problem(false, true));
+  ASSERT_TRUE(result.ok()) << result.message;
+  EXPECT_NE(result.square_root, PriorSquareRoot::kBlockFloor);
+  int eigen_floored = 0;
+  const Eigen::MatrixXd expected =
+      EigenPathFloor(result.information, &eigen_floored);
+  EXPECT_EQ(eigen_floored, kPoints + 6);
   EXPECT_EQ(result.num_floored_eigenvalues, kPoints + 6);
   const Eigen::MatrixXd& J = result.jacobian;
   EXPECT_LT((J.transpose() * J - expected).cwiseAbs().maxCoeff(),
