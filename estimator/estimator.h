@@ -135,6 +135,14 @@ struct EstimatorSummary {
   // that stays).
   int64_t points_capped = 0;
   int64_t most_world_points = 0;
+  // How each successful marginalisation took its prior's square root
+  // (marginalization.h step 4): H*'s Cholesky factor; the floor block by
+  // block (world points, null_space_floor.h); the floor of exact zeros by
+  // subspace iteration; the eigen path (the fallback of both floors).
+  int64_t prior_cholesky = 0;
+  int64_t prior_block_floor = 0;
+  int64_t prior_subspace_floor = 0;
+  int64_t prior_eigen = 0;
   int64_t solver_failures = 0;           // Ceres reported failure
   // Per step: Ceres' wall time, and the CPU time of this thread during the
   // solve (unaffected by other processes competing for the cores) [s]. As

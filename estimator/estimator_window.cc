@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 #include "estimator/estimator.h"
 #include "estimator/marginalization.h"
@@ -17,6 +18,25 @@ namespace {
 
 double Seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
+}
+
+// The square root's path of one marginalisation, into the summary.
+void CountSquareRoot(const MarginalizationResult& result,
+                     EstimatorSummary* summary) {
+  switch (result.square_root) {
+    case PriorSquareRoot::kCholesky:
+      ++summary->prior_cholesky;
+      break;
+    case PriorSquareRoot::kBlockFloor:
+      ++summary->prior_block_floor;
+      break;
+    case PriorSquareRoot::kNullSpaceFloor:
+      ++summary->prior_subspace_floor;
+      break;
+    case PriorSquareRoot::kEigen:
+      ++summary->prior_eigen;
+      break;
+  }
 }
 
 }  // namespace
@@ -112,11 +132,12 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ThreadCpuSeconds();
   const MarginalizationProblem m = problem.OldestFrameMarginalization(outliers);
-  const MarginalizationResult result = Marginalize(m);
+  MarginalizationResult result = Marginalize(m);
   ++summary_.marginalizations;
   if (result.ok()) {
-    prior_ = result.MakePrior();
     prior_blocks_ = result.kept_parameter_blocks;
+    CountSquareRoot(result, &summary_);
+    prior_ = std::move(result).MakePrior();  // result's matrices moved out
     // Every sighting of a capped point is in the prior now: its track, if
     // it goes on, starts again as a new landmark.
     for (const int64_t id : problem.capped_points()) features_.Forget(id);

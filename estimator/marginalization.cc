@@ -67,6 +67,18 @@ std::string CheckProblem(const MarginalizationProblem& problem) {
   return "";
 }
 
+// The kept blocks' coordinates in H* (tangent sizes, in order).
+std::vector<CoordinateBlock> KeptCoordinateBlocks(
+    const std::vector<const MarginalizationParameterBlock*>& kept) {
+  std::vector<CoordinateBlock> blocks;
+  int offset = 0;
+  for (const MarginalizationParameterBlock* p : kept) {
+    blocks.push_back({offset, p->TangentSize()});
+    offset += p->TangentSize();
+  }
+  return blocks;
+}
+
 // Pseudo-inverse of the symmetric H_mm by eigen-decomposition; eigenvalues
 // below floor * max count as zero. Returns the number of dropped directions.
 int PseudoInverse(const Eigen::MatrixXd& H_mm, double floor,
@@ -118,37 +130,56 @@ int SchurComplement(const Eigen::MatrixXd& H, const Eigen::VectorXd& b,
 // J = sqrt(S) V^T and r0 = -sqrt(S)^-1 V^T b* (V orthonormal). Returns the
 // number of floored eigenvalues (0 on the Cholesky path), or -1 when H* holds
 // no information at all (largest eigenvalue not > 0) or cannot be decomposed.
-// When the floored eigenvalues are exact zeros (world points, see
-// null_space_floor.h) the floored H_f = V max(S, s_min) V^T is found without
-// the eigenvectors and J = L^T of H_f = L L^T, r0 = -L^-1 b*: the same
-// J^T J, J^T r0 and |r0|^2 (to rounding), at about 60 % of the eigen
-// path's cost (docs/speed.md); *floored_information then receives H_f
-// (= J^T J), else is emptied.
+// When the floored eigenvectors each lie in one kept block (`blocks`: world
+// points, null_space_floor.h), or are exact zeros, the floored
+// H_f = V max(S, s_min) V^T is found without the eigenvectors, by
+// FloorBlockDirections or else FloorNullSpace, and J = L^T of H_f = L L^T,
+// r0 = -L^-1 b*: the same J^T J, J^T r0 and |r0|^2 (to rounding);
+// *floored_information then receives H_f (= J^T J), else is emptied. *path
+// says which way J was found.
 int SquareRoot(const Eigen::MatrixXd& H_star, const Eigen::VectorXd& b_star,
-               double floor, Eigen::MatrixXd* J, Eigen::VectorXd* r0,
-               Eigen::MatrixXd* floored_information) {
+               double floor, const std::vector<CoordinateBlock>& blocks,
+               Eigen::MatrixXd* J, Eigen::VectorXd* r0,
+               Eigen::MatrixXd* floored_information, PriorSquareRoot* path) {
   floored_information->resize(0, 0);
-  const Eigen::LLT<Eigen::MatrixXd> llt(H_star);
-  if (llt.info() == Eigen::Success) {
+  // A factor usable unfloored: every pivot^2 positive and at least floor
+  // times the largest.
+  auto usable = [floor](const Eigen::LLT<Eigen::MatrixXd>& llt) {
+    if (llt.info() != Eigen::Success) return false;
     const Eigen::VectorXd pivots = llt.matrixLLT().diagonal().cwiseAbs2();
-    if (pivots.minCoeff() > 0.0 &&
-        pivots.minCoeff() >= floor * pivots.maxCoeff()) {
-      *J = llt.matrixU();
-      *r0 = -llt.matrixL().solve(b_star);
-      return 0;
-    }
+    return pivots.minCoeff() > 0.0 &&
+           pivots.minCoeff() >= floor * pivots.maxCoeff();
+  };
+  const Eigen::LLT<Eigen::MatrixXd> llt(H_star);
+  if (usable(llt)) {
+    *J = llt.matrixU();
+    *r0 = -llt.matrixL().solve(b_star);
+    *path = PriorSquareRoot::kCholesky;
+    return 0;
   }
   Eigen::MatrixXd H_f;
   int null_floored = 0;
-  if (FloorNullSpace(H_star, floor, &H_f, &null_floored)) {
+  for (const PriorSquareRoot way :
+       {PriorSquareRoot::kBlockFloor, PriorSquareRoot::kNullSpaceFloor}) {
+    const bool found =
+        way == PriorSquareRoot::kBlockFloor
+            ? FloorBlockDirections(H_star, floor, blocks, &H_f, &null_floored)
+            : FloorNullSpace(H_star, floor, &H_f, &null_floored);
+    if (!found) continue;
+    // The block floor's H_f is held to H*'s own test (null_space_floor.h,
+    // (b)); the subspace floor has checked its spectrum already.
     const Eigen::LLT<Eigen::MatrixXd> llt_f(H_f);
-    if (llt_f.info() == Eigen::Success) {
-      *J = llt_f.matrixU();
-      *r0 = -llt_f.matrixL().solve(b_star);
-      *floored_information = std::move(H_f);
-      return null_floored;
+    if (way == PriorSquareRoot::kBlockFloor ? !usable(llt_f)
+                                            : llt_f.info() != Eigen::Success) {
+      continue;
     }
+    *J = llt_f.matrixU();
+    *r0 = -llt_f.matrixL().solve(b_star);
+    *floored_information = std::move(H_f);
+    *path = way;
+    return null_floored;
   }
+  *path = PriorSquareRoot::kEigen;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H_star);
   if (eig.info() != Eigen::Success) return -1;
   const double lambda_max = eig.eigenvalues().maxCoeff();
@@ -228,8 +259,9 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
     return fail("the Schur complement is not finite");
   }
   result.num_floored_eigenvalues = SquareRoot(
-      H_star, b_star, options.prior_eigenvalue_floor, &result.jacobian,
-      &result.residual0, &result.floored_information);
+      H_star, b_star, options.prior_eigenvalue_floor,
+      KeptCoordinateBlocks(kept), &result.jacobian, &result.residual0,
+      &result.floored_information, &result.square_root);
   if (result.num_floored_eigenvalues < 0) {
     return fail("no information is left on the kept blocks (" +
                 std::to_string(result.num_skipped_residual_blocks) +
@@ -238,7 +270,7 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
   if (!result.jacobian.allFinite() || !result.residual0.allFinite()) {
     return fail("the prior's J or r0 is not finite");
   }
-  result.information = H_star;
+  result.information = std::move(H_star);
   result.gradient = -b_star;
   for (const MarginalizationParameterBlock* p : kept) {
     result.kept_parameter_blocks.push_back(p->values);
@@ -258,13 +290,21 @@ MarginalizationResult Marginalize(const MarginalizationProblem& problem,
   return result;
 }
 
-std::unique_ptr<MarginalizationPrior> MarginalizationResult::MakePrior() const {
+std::unique_ptr<MarginalizationPrior> MarginalizationResult::MakePrior()
+    const& {
   // Without floored eigenvalues J^T J is H* (to rounding), with them it is
   // floored_information when the square root was taken from it: the prior
   // need not form it again.
   return std::make_unique<MarginalizationPrior>(
       kept_blocks, jacobian, residual0,
       num_floored_eigenvalues == 0 ? information : floored_information);
+}
+
+std::unique_ptr<MarginalizationPrior> MarginalizationResult::MakePrior() && {
+  Eigen::MatrixXd& J_T_J =
+      num_floored_eigenvalues == 0 ? information : floored_information;
+  return std::make_unique<MarginalizationPrior>(
+      kept_blocks, std::move(jacobian), std::move(residual0), std::move(J_T_J));
 }
 
 MarginalizationResidualBlock PriorResidualBlock(

@@ -26,8 +26,10 @@
 //        J = sqrt(S) V^T,   r0 = -sqrt(S)^-1 V^T b*.
 //      When the floored eigenvalues are exact zeros (world points: one per
 //      point converted with a single sighting) V max(S, eps) V^T is found
-//      without the eigenvectors (null_space_floor.h) and J is its Cholesky
-//      factor: the same prior to rounding.
+//      without the eigenvectors (null_space_floor.h: block by block when
+//      each floored eigenvector lies in one kept block, else by inverse
+//      subspace iteration) and J is its Cholesky factor: the same prior to
+//      rounding.
 //      Either way the prior r = r0 + J (x (-) x0) has the Schur complement's
 //      Hessian and gradient at x0.
 // References: Sibley et al., JFR 2010; Leutenegger et al., IJRR 2015 (the
@@ -92,6 +94,14 @@ struct MarginalizationOptions {
   bool Validate(std::string* message) const;
 };
 
+// Which way step 4 took the square root of H*.
+enum class PriorSquareRoot {
+  kCholesky,        // H* positive definite: J = L^T, no floor
+  kBlockFloor,      // floored eigenvectors each within one kept block
+  kNullSpaceFloor,  // floored eigenvalues exact zeros (subspace iteration)
+  kEigen,           // the eigen-decomposition of H*
+};
+
 enum class MarginalizationStatus {
   kOk,          // prior built from every residual block; H_mm full rank
   kDegenerate,  // prior built, but residual blocks were skipped or H_mm was
@@ -111,6 +121,7 @@ struct MarginalizationResult {
   int marginalized_rank_deficiency = 0;  // dropped directions of H_mm
   // Eigenvalues of H* raised to the floor; 0 on the Cholesky path.
   int num_floored_eigenvalues = 0;
+  PriorSquareRoot square_root = PriorSquareRoot::kCholesky;
 
   // The kept blocks, in the prior's parameter order, and their description
   // (kind and x0 = the values at marginalisation time).
@@ -128,8 +139,11 @@ struct MarginalizationResult {
   bool ok() const { return status != MarginalizationStatus::kFailed; }
 
   // The prior for the next window (Ceres takes ownership when it is added
-  // with kept_parameter_blocks). Requires ok().
-  std::unique_ptr<MarginalizationPrior> MakePrior() const;
+  // with kept_parameter_blocks). Requires ok(). The second moves J, r0 and
+  // the information into it (k x k each, 0.3 MB with world points) and
+  // leaves them empty here.
+  std::unique_ptr<MarginalizationPrior> MakePrior() const&;
+  std::unique_ptr<MarginalizationPrior> MakePrior() &&;
 };
 
 // Runs one marginalisation step. Never throws on bad values and never returns

@@ -283,18 +283,25 @@ bool MarginalizationSystem::AccumulatePrior(int k) {
     g.segment<3>(c) = M.transpose() * g.segment<3>(c);
   }
   if (!G.allFinite() || !g.allFinite()) return false;
+  // Each block's slot looked up once (a prior holding world points has
+  // about 80 blocks: 6400 pairs below).
   const size_t n = r.parameter_blocks.size();
+  param_slots_.assign(n, nullptr);
   for (size_t a = 0; a < n; ++a) {
-    const auto ia = slots_.find(r.parameter_blocks[a]);
-    if (ia == slots_.end()) continue;
-    const Slot& sa = ia->second;
+    const auto it = slots_.find(r.parameter_blocks[a]);
+    if (it != slots_.end()) param_slots_[a] = &it->second;
+  }
+  for (size_t a = 0; a < n; ++a) {
+    if (param_slots_[a] == nullptr) continue;
+    const Slot& sa = *param_slots_[a];
     const int ta = TangentSizeOf(*sa.block);
     const int pa = prior->TangentOffset(static_cast<int>(a));
     b_.segment(sa.offset, ta) -= g.segment(pa, ta);
     for (size_t c = 0; c < n; ++c) {
-      const auto ic = slots_.find(r.parameter_blocks[c]);
-      if (ic == slots_.end() || ic->second.offset < sa.offset) continue;
-      const Slot& sc = ic->second;
+      if (param_slots_[c] == nullptr || param_slots_[c]->offset < sa.offset) {
+        continue;
+      }
+      const Slot& sc = *param_slots_[c];
       H_.block(sa.offset, sc.offset, ta, TangentSizeOf(*sc.block)) +=
           G.block(pa, prior->TangentOffset(static_cast<int>(c)), ta,
                   TangentSizeOf(*sc.block));

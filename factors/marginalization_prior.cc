@@ -29,10 +29,12 @@ int PriorBlock::TangentSize() const {
 }
 
 MarginalizationPrior::MarginalizationPrior(std::vector<PriorBlock> blocks,
-                                           const Eigen::MatrixXd& jacobian,
-                                           const Eigen::VectorXd& residual0,
-                                           const Eigen::MatrixXd& information)
-    : blocks_(std::move(blocks)), jacobian_(jacobian), residual0_(residual0) {
+                                           Eigen::MatrixXd jacobian,
+                                           Eigen::VectorXd residual0,
+                                           Eigen::MatrixXd information)
+    : blocks_(std::move(blocks)),
+      jacobian_(std::move(jacobian)),
+      residual0_(std::move(residual0)) {
   if (blocks_.empty()) {
     throw std::invalid_argument("MarginalizationPrior: no parameter blocks");
   }
@@ -81,7 +83,7 @@ MarginalizationPrior::MarginalizationPrior(std::vector<PriorBlock> blocks,
         std::to_string(tangent_size) + " x " + std::to_string(tangent_size) +
         " matrix");
   } else {
-    information_ = information;
+    information_ = std::move(information);
   }
   gradient0_ = jacobian_.transpose() * residual0_;
 }

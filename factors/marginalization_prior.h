@@ -56,11 +56,11 @@ class MarginalizationPrior final : public ceres::CostFunction {
   // information: J^T J when the caller has it (n' x n'; the marginalisation
   // does), empty to have it computed here.
   // Throws std::invalid_argument when the sizes disagree, a pose block does
-  // not have 7 values, or any value is not finite.
-  MarginalizationPrior(std::vector<PriorBlock> blocks,
-                       const Eigen::MatrixXd& jacobian,
-                       const Eigen::VectorXd& residual0,
-                       const Eigen::MatrixXd& information = Eigen::MatrixXd());
+  // not have 7 values, or any value is not finite. (By value: a caller done
+  // with its matrices moves them in.)
+  MarginalizationPrior(std::vector<PriorBlock> blocks, Eigen::MatrixXd jacobian,
+                       Eigen::VectorXd residual0,
+                       Eigen::MatrixXd information = Eigen::MatrixXd());
 
   // Never throws. Returns false when a parameter value, the residual or a
   // Jacobian entry is not finite.

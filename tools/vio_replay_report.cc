@@ -151,6 +151,11 @@ void PrintSummary(const EstimatorSummary& s,
       (long long)s.points_released, (long long)s.points_capped,
       (long long)s.most_world_points);
   std::printf(
+      "  prior square root     %lld Cholesky, %lld floored block by block, "
+      "%lld by subspace iteration, %lld eigen\n",
+      (long long)s.prior_cholesky, (long long)s.prior_block_floor,
+      (long long)s.prior_subspace_floor, (long long)s.prior_eigen);
+  std::printf(
       "  landmarks per step    median %.0f; outliers removed: %lld "
       "sightings, %lld landmarks; %lld landmarks behind their anchor "
       "removed\n",
