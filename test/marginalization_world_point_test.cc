@@ -20,6 +20,7 @@
 #include "estimator/marginalization.h"
 #include "factors/pose_manifold.h"
 #include "factors/world_point_factor.h"
+#include "test/testing/eigen_path_floor.h"
 #include "test/testing/pose_test_factors.h"
 
 namespace vio {
@@ -50,21 +51,6 @@ Eigen::Isometry3d Isometry(const std::array<double, 7>& pose) {
   T.linear() = Eigen::Quaterniond(pose.data() + 3).toRotationMatrix();
   T.translation() = Eigen::Vector3d(pose.data());
   return T;
-}
-
-// The eigen path of marginalization.cc: V max(S, floor * max S) V^T.
-Eigen::MatrixXd EigenPathFloor(const Eigen::MatrixXd& H, int* floored) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
-  Eigen::VectorXd s = eig.eigenvalues();
-  const double s_min = kFloor * s.maxCoeff();
-  *floored = 0;
-  for (int i = 0; i < s.size(); ++i) {
-    if (s[i] < s_min) {
-      s[i] = s_min;
-      ++*floored;
-    }
-  }
-  return eig.eigenvectors() * s.asDiagonal() * eig.eigenvectors().transpose();
 }
 
 // Pose 0 leaves with one sighting of each point (its camera's extrinsic
@@ -205,7 +191,7 @@ TEST_F(WorldPointFloor, PriorIsFlooredBlockByBlockAsTheEigenPathWould) {
   EXPECT_EQ(result.num_floored_eigenvalues, kPoints);
   int eigen_floored = 0;
   const Eigen::MatrixXd expected =
-      EigenPathFloor(result.information, &eigen_floored);
+      testing::EigenPathFloor(result.information, kFloor, &eigen_floored);
   EXPECT_EQ(eigen_floored, kPoints);
   const double scale = expected.cwiseAbs().maxCoeff();
   const Eigen::MatrixXd& J = result.jacobian;
@@ -228,7 +214,7 @@ TEST_F(WorldPointFloor, GaugeFreeNullSpaceTakesAnotherPathToTheSameFloor) {
   EXPECT_NE(result.square_root, PriorSquareRoot::kCholesky);
   int eigen_floored = 0;
   const Eigen::MatrixXd expected =
-      EigenPathFloor(result.information, &eigen_floored);
+      testing::EigenPathFloor(result.information, kFloor, &eigen_floored);
   EXPECT_EQ(eigen_floored, kPoints + 6);  // the rays and the gauge
   EXPECT_EQ(result.num_floored_eigenvalues, kPoints + 6);
   const Eigen::MatrixXd& J = result.jacobian;
@@ -246,7 +232,7 @@ TEST_F(WorldPointFloor, WeakGaugeBelowTheFloorIsNotLeftUnfloored) {
   EXPECT_NE(result.square_root, PriorSquareRoot::kBlockFloor);
   int eigen_floored = 0;
   const Eigen::MatrixXd expected =
-      EigenPathFloor(result.information, &eigen_floored);
+      testing::EigenPathFloor(result.information, kFloor, &eigen_floored);
   EXPECT_EQ(eigen_floored, kPoints + 6);
   EXPECT_EQ(result.num_floored_eigenvalues, kPoints + 6);
   const Eigen::MatrixXd& J = result.jacobian;

@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "test/testing/eigen_path_floor.h"
+
 namespace vio {
 namespace {
 
@@ -23,21 +25,6 @@ Eigen::MatrixXd WithSpectrum(const Eigen::VectorXd& s, Eigen::MatrixXd* V) {
   *V = Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ();
   Eigen::MatrixXd H = *V * s.asDiagonal() * V->transpose();
   return 0.5 * (H + H.transpose());
-}
-
-// The eigen path of marginalization.cc: V max(S, floor * max S) V^T.
-Eigen::MatrixXd EigenPathFloor(const Eigen::MatrixXd& H, int* floored) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(H);
-  Eigen::VectorXd s = eig.eigenvalues();
-  const double s_min = kFloor * s.maxCoeff();
-  *floored = 0;
-  for (int i = 0; i < s.size(); ++i) {
-    if (s[i] < s_min) {
-      s[i] = s_min;
-      ++*floored;
-    }
-  }
-  return eig.eigenvectors() * s.asDiagonal() * eig.eigenvectors().transpose();
 }
 
 // A spectrum like a keep_point_fej prior's (docs/speed.md): a spread of
@@ -61,7 +48,8 @@ TEST(NullSpaceFloor, EqualsTheEigenPathOnExactZeros) {
   int floored = 0;
   ASSERT_TRUE(FloorNullSpace(H, kFloor, &H_f, &floored));
   int eigen_floored = 0;
-  const Eigen::MatrixXd expected = EigenPathFloor(H, &eigen_floored);
+  const Eigen::MatrixXd expected =
+      testing::EigenPathFloor(H, kFloor, &eigen_floored);
   EXPECT_EQ(floored, 7);
   EXPECT_EQ(eigen_floored, 7);
   const double s_min = kFloor * s.maxCoeff();
@@ -198,7 +186,8 @@ TEST(FloorBlockDirections, EqualsTheEigenPathOnBlockEigenvectors) {
   int floored = 0;
   ASSERT_TRUE(FloorBlockDirections(H, kFloor, blocks, &H_f, &floored));
   int eigen_floored = 0;
-  const Eigen::MatrixXd expected = EigenPathFloor(H, &eigen_floored);
+  const Eigen::MatrixXd expected =
+      testing::EigenPathFloor(H, kFloor, &eigen_floored);
   EXPECT_EQ(floored, 7);
   EXPECT_EQ(eigen_floored, 7);
   EXPECT_LT((H_f - expected).cwiseAbs().maxCoeff(),
