@@ -172,6 +172,13 @@ TEST(LandmarkMap, WorldPointKeepsItsLatestEstimateAndOneRecordPerTrack) {
   // Over x = 0 and x = 2 (frame 0 has left): wider than frames 1 and 2.
   EXPECT_NEAR(now.parallax_deg, angle_deg(4.9, 0.0, 2.0), 1e-9);
   EXPECT_EQ(now.sightings, 3);
+  // The next solve moves it away to z = 5.2: a narrower angle over the same
+  // sightings, still the better estimate.
+  m.features.landmarks().at(7).p_w = {0.5, 0.0, 5.2};
+  m.map.RecordWorldPoints(m.features, m.T_w_c, {7});
+  now = m.map.WithWindow(m.features, m.T_w_c).at(7);
+  EXPECT_LT((now.p_w - Eigen::Vector3d(0.5, 0.0, 5.2)).norm(), 1e-12);
+  EXPECT_NEAR(now.parallax_deg, angle_deg(5.2, 0.0, 2.0), 1e-9);
   // Capped: the window forgets it; its track restarts in frames 3 and 4,
   // triangulated at z = 5 over a narrower angle.
   m.features.Forget(7);
@@ -183,14 +190,14 @@ TEST(LandmarkMap, WorldPointKeepsItsLatestEstimateAndOneRecordPerTrack) {
   m.map.Retire(m.features, {7});
   EXPECT_TRUE(m.map.TakeFinished().empty());  // the track goes on
   now = m.map.WithWindow(m.features, m.T_w_c).at(7);
-  EXPECT_LT((now.p_w - Eigen::Vector3d(0.5, 0.0, 4.9)).norm(), 1e-12);
+  EXPECT_LT((now.p_w - Eigen::Vector3d(0.5, 0.0, 5.2)).norm(), 1e-12);
   m.map.RecordAnchoredIn(m.features, 3, m.T_w_c);
   m.features.Clear();
   m.map.Retire(m.features, {});
   const std::map<int64_t, MappedLandmark> taken = m.map.TakeFinished();
   ASSERT_EQ(taken.size(), 1u);
-  EXPECT_LT((taken.at(7).p_w - Eigen::Vector3d(0.5, 0.0, 4.9)).norm(), 1e-12);
-  EXPECT_NEAR(taken.at(7).parallax_deg, angle_deg(4.9, 0.0, 2.0), 1e-9);
+  EXPECT_LT((taken.at(7).p_w - Eigen::Vector3d(0.5, 0.0, 5.2)).norm(), 1e-12);
+  EXPECT_NEAR(taken.at(7).parallax_deg, angle_deg(5.2, 0.0, 2.0), 1e-9);
   EXPECT_TRUE(m.map.WithWindow(m.features, m.T_w_c).empty());
 }
 
