@@ -219,7 +219,8 @@ class Estimator {
   // The landmarks triangulated so far and not taken by
   // TakeFinishedLandmarks, by feature id, with world position [m] and
   // triangulation angle (estimator/landmark_map.h: each as when its anchor
-  // frame was last marginalised, or as now when still in the window).
+  // frame was last marginalised, or as now when still in the window; a
+  // world point as last solved, one row per feature id).
   // Landmarks lost to a reset, or removed as outliers before their anchor left,
   // are not in it. Read-only: it does not change the estimate.
   std::map<int64_t, MappedLandmark> MappedLandmarks() const {

@@ -80,6 +80,14 @@ Failure Estimator::CheckStep(const EstimatorOutput& predicted, int landmarks,
 void Estimator::Slide(const WindowProblem& problem) {
   const OutlierReport outliers =
       problem.Outliers(options_.landmarks.outlier_threshold_px);
+  // The world points as solved, before any is capped, marginalised or
+  // released below (those about to be removed as outliers keep their
+  // earlier record). Read-only for the estimate.
+  std::vector<int64_t> points;
+  for (const auto& [id, l] : features_.landmarks()) {
+    if (l.world_point && !outliers.Involves(id)) points.push_back(id);
+  }
+  landmark_map_.RecordWorldPoints(features_, PoseFn(), points);
   const WindowFrame& newest = *window_.frames.back();
   const bool marginalize =
       newest.keyframe && window_.NumKeyframes() > options_.window_size;
@@ -139,7 +147,10 @@ void Estimator::MarginalizeOldest(const WindowProblem& problem,
     CountSquareRoot(result, &summary_);
     prior_ = std::move(result).MakePrior();  // result's matrices moved out
     // Every sighting of a capped point is in the prior now: its track, if
-    // it goes on, starts again as a new landmark.
+    // it goes on, starts again as a new landmark. (One converted in this
+    // step was no world point when the map last recorded them.)
+    landmark_map_.RecordWorldPoints(features_, PoseFn(),
+                                    problem.capped_points());
     for (const int64_t id : problem.capped_points()) features_.Forget(id);
     summary_.points_capped +=
         static_cast<int64_t>(problem.capped_points().size());

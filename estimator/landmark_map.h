@@ -12,6 +12,19 @@
 // sightings, their first ones having left the window). Read-only for the
 // estimation: nothing here feeds back into the window.
 //
+// A world point (landmarks.reanchored_tracks keep_point*, Landmark::
+// world_point) is recorded when it is converted (its anchor frame leaves),
+// again after every step's solve while it lives (RecordWorldPoints: its
+// last record is its estimate when it is marginalised, capped or released),
+// and as it is at query time. A later record of a world point replaces the
+// earlier ones whatever its angle: the point's estimate holds all its
+// sightings, the marginalised ones through the prior. Its angle is taken
+// over every sighting the point ever had (the camera centres are kept while
+// it lives). A capped point's track restarts as a new landmark under the
+// same feature id: the same simulated or tracked point, so it stays one
+// record, the better triangulated (widest angle) of the capped point and
+// the landmarks of the restarted track.
+//
 // A record is finished once its landmark has left the window and its track
 // has ended (the newest frame does not observe it): nothing can replace it
 // any more. The finished records can be taken away as the run goes
@@ -29,6 +42,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "estimator/feature_manager.h"
@@ -49,6 +63,14 @@ class LandmarkMap {
   void RecordAnchoredIn(const FeatureManager& features, int64_t frame_id,
                         const CameraPoseFn& T_w_c);
 
+  // Records the world points of `ids` (sorted ascending) that have
+  // sightings, as they are now: after every solve those not about to be
+  // removed as outliers (whose solved position is suspect), and the capped
+  // ones before the window forgets them.
+  void RecordWorldPoints(const FeatureManager& features,
+                         const CameraPoseFn& T_w_c,
+                         const std::vector<int64_t>& ids);
+
   // Marks finished the records of landmarks that are no longer in the
   // window and not in `newest_ids` (the feature ids the newest frame
   // observed, sorted ascending).
@@ -64,7 +86,23 @@ class LandmarkMap {
                                                const CameraPoseFn& T_w_c) const;
 
  private:
-  std::map<int64_t, MappedLandmark> recorded_;  // may still be replaced
+  // One feature id's records: `live` of the landmark (or world point) the
+  // id has now, `closed` the best of its earlier world points (capped or
+  // released while the track went on).
+  struct Record {
+    MappedLandmark live;
+    bool has_live = false;
+    bool live_is_point = false;
+    bool has_closed = false;
+    MappedLandmark closed;
+    // The live world point's sightings' camera centres, by (frame, camera).
+    std::map<std::pair<int64_t, int>, Eigen::Vector3d> centres;
+    MappedLandmark Best() const;
+  };
+  // Adds a record of `l` (world point or not) to `r`.
+  static void Add(const Landmark& l, const CameraPoseFn& T_w_c, Record* r);
+
+  std::map<int64_t, Record> recorded_;          // may still be replaced
   std::map<int64_t, MappedLandmark> finished_;  // final, not taken yet
 };
 
