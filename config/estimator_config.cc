@@ -139,6 +139,8 @@ void ReadSections(const YamlNode& e, EstimatorOptions* o) {
   o->landmarks.world_points_in_max_landmarks =
       l.Get<bool>("world_points_in_max_landmarks");
   o->landmarks.max_world_points = l.Get<int>("max_world_points");
+  o->landmarks.reuse_after_moving_start_s =
+      l.Get<double>("reuse_after_moving_start_s");
   const YamlNode s = e.Child("static_init");
   o->static_init.window_s = s.Get<double>("window_s");
   o->static_init.block_s = s.Get<double>("block_s");

@@ -291,6 +291,9 @@ class Estimator {
                          const OutlierReport& outliers);
   void UpdateImuLinearization();
   WindowProblemSettings ProblemSettings() const;
+  // landmarks.reuse_after_moving_start_s: the newest frame before
+  // reuse_tracks_until_ns_ and no world point yet (estimator_window.cc).
+  bool InReuseAfterMovingStart() const;
   void SetPriorOnOldest(double velocity_sigma);
   // keep_point (estimator_points.cc): marginalises the world points left
   // without sightings out of the prior and deletes them; a failure puts a
@@ -348,6 +351,11 @@ class Estimator {
   bool have_frame_ = false;
   EstimatorOutput last_output_;
   EstimatorSummary summary_;
+  // Until this camera stamp a keep_point* run handles the leaving keyframe's
+  // landmarks as reuse: set by a start in motion (its own first
+  // marginalisation included) to its stamp plus
+  // landmarks.reuse_after_moving_start_s [ns].
+  int64_t reuse_tracks_until_ns_ = INT64_MIN;
 };
 
 }  // namespace vio

@@ -49,6 +49,8 @@ bool EstimatorOptions::Validate(std::string* message) const {
   c.Positive("landmarks.outlier_threshold_px", landmarks.outlier_threshold_px);
   c.AtLeast("landmarks.max_landmarks", landmarks.max_landmarks, 1);
   c.AtLeast("landmarks.max_world_points", landmarks.max_world_points, 0);
+  c.NonNegative("landmarks.reuse_after_moving_start_s",
+                landmarks.reuse_after_moving_start_s);
   // The world-point factor has no time shift (factors/world_point_factor.h).
   c.Nested("landmarks.",
            !(landmarks.reanchored_tracks != ReanchoredTracks::kReuse &&

@@ -88,6 +88,13 @@ struct LandmarkOptions {
   // bounded is the dense part of the solver's system and of the prior
   // (docs/recorded_flights.md, "A bound on the world points").
   int max_world_points = 0;
+  // keep_point*: for this many seconds after a start in motion (any start
+  // but the static one) the leaving keyframe's landmarks are handled as
+  // reuse, keep_point after it (0: keep_point from the start). A start in
+  // motion's scale and biases are still being corrected then; a world point
+  // made in that time is held by the prior where the wrong scale put it
+  // (docs/recorded_flights.md, "Starts in motion and keep_point").
+  double reuse_after_moving_start_s = 0.0;
 };
 
 // Static start: the IMU tells when the vehicle stands still.

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <utility>
 
@@ -76,6 +77,7 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   record.diagnostics.initial_b_g = start.frames.back().b_g;
   if (start.frames.size() == 1) {
     // The static start: one frame, at rest.
+    reuse_tracks_until_ns_ = INT64_MIN;
     const InitialFrame& s = start.frames.front();
     EstimatorOutput state;
     state.p_w_b = s.p_w_b;
@@ -101,6 +103,15 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   auto saved_extrinsic_prior = std::move(extrinsic_prior_);
   const auto saved_extrinsic_blocks = extrinsic_prior_blocks_;
   const int64_t saved_keyframe = last_keyframe_id_;
+  const int64_t saved_reuse_until = reuse_tracks_until_ns_;
+  // A start in motion's scale and biases are still being corrected: its
+  // leaving landmarks are reused, not made world points, for a while
+  // (landmarks.reuse_after_moving_start_s), from its own slide on.
+  // (At most 1e9 s: the stamp plus the span stays within int64.)
+  reuse_tracks_until_ns_ =
+      record.t_ns +
+      std::llround(1e9 * std::min(options_.landmarks.reuse_after_moving_start_s,
+                                  1e9));
   const size_t n = start.frames.size();
   double value = 0.0, limit = 0.0;
   InitFailure reason = InitFailure::kImuUnavailable;
@@ -119,6 +130,7 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
     extrinsic_prior_ = std::move(saved_extrinsic_prior);
     extrinsic_prior_blocks_ = saved_extrinsic_blocks;
     last_keyframe_id_ = saved_keyframe;
+    reuse_tracks_until_ns_ = saved_reuse_until;
     InitAttempt a;
     a.t_ns = record.t_ns;
     a.method = start.method;

@@ -127,12 +127,25 @@ WindowProblemSettings Estimator::ProblemSettings() const {
   s.estimate_time_offset = options_.estimate_time_offset;
   s.max_landmarks = options_.landmarks.max_landmarks;
   s.keep_points =
-      options_.landmarks.reanchored_tracks != ReanchoredTracks::kReuse;
+      options_.landmarks.reanchored_tracks != ReanchoredTracks::kReuse &&
+      !InReuseAfterMovingStart();
   s.point_first_estimates = options_.landmarks.reanchored_tracks ==
                             ReanchoredTracks::kKeepPointFirstEstimate;
   s.points_in_max_landmarks = options_.landmarks.world_points_in_max_landmarks;
   s.max_points = options_.landmarks.max_world_points;
   return s;
+}
+
+bool Estimator::InReuseAfterMovingStart() const {
+  if (window_.frames.empty() ||
+      window_.frames.back()->t_ns >= reuse_tracks_until_ns_) {
+    return false;
+  }
+  // Never back to reuse once the prior holds world points.
+  for (const auto& [id, l] : features_.landmarks()) {
+    if (l.world_point) return false;
+  }
+  return true;
 }
 
 void Estimator::MarginalizeOldest(const WindowProblem& problem,

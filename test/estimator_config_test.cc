@@ -53,6 +53,8 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.landmarks.world_points_in_max_landmarks,
             d.landmarks.world_points_in_max_landmarks);
   EXPECT_EQ(o.landmarks.max_world_points, d.landmarks.max_world_points);
+  EXPECT_EQ(o.landmarks.reuse_after_moving_start_s,
+            d.landmarks.reuse_after_moving_start_s);
   EXPECT_EQ(o.static_init.max_acc_std, d.static_init.max_acc_std);
   EXPECT_EQ(o.state_prior.tilt_rad, d.state_prior.tilt_rad);
   EXPECT_EQ(o.failure.max_position_jump_m, d.failure.max_position_jump_m);
@@ -163,6 +165,13 @@ TEST(EstimatorConfig, ErrorsNameFileAndKey) {
                             "    max_world_points: -1 ")),
             "test.yaml: estimator.landmarks.max_world_points must be >= 0 "
             "(got -1)");
+  EXPECT_EQ(ErrorOf(Replace(text, "    reuse_after_moving_start_s: 0 ", "")),
+            "test.yaml: estimator.landmarks.reuse_after_moving_start_s is "
+            "missing");
+  EXPECT_EQ(ErrorOf(Replace(text, "reuse_after_moving_start_s: 0 ",
+                            "reuse_after_moving_start_s: -1 ")),
+            "test.yaml: estimator.landmarks.reuse_after_moving_start_s must "
+            "be >= 0 (got -1)");
   EXPECT_EQ(ErrorOf(Replace(text, "linear_solver: dense_schur",
                             "linear_solver: cholmod")),
             "test.yaml: estimator.solver.linear_solver must be a Ceres "

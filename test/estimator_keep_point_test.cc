@@ -1,7 +1,8 @@
 // landmarks.reanchored_tracks keep_point / keep_point_fej over a whole run
 // (estimator/window_problem_points.cc, estimator/estimator_points.cc): the
 // world points enter and leave the prior without a failed marginalisation,
-// and the run tracks as well as reuse does.
+// and the run tracks as well as reuse does; reuse_after_moving_start_s
+// holds the conversion back after a start in motion only.
 
 #include <gtest/gtest.h>
 
@@ -100,6 +101,53 @@ TEST(EstimatorKeepPoint, MonoWorldPointsWithinTheirBound) {
   EXPECT_GT(capped.summary.marginalizations, 20);
   EXPECT_EQ(capped.summary.marginalization_failures, 0);
   EXPECT_LT(capped.ate_rmse_m, 0.06);
+}
+
+// keep_point_fej with reuse_after_moving_start_s = reuse_s on a 12 s mono
+// run, at rest for its first 2 s (a static start) or in motion from its
+// first sample.
+SimReplay ReplayStart(bool in_motion, double reuse_s) {
+  SimulatorOptions sim = testing::ShortSimulation(12.0, false);
+  if (in_motion) {
+    sim.motion.still_duration_s = 0.0;
+    sim.motion.blend_duration_s = 0.0;
+  }
+  EstimatorOptions options = testing::OptionsFor(sim);
+  options.landmarks.reanchored_tracks =
+      ReanchoredTracks::kKeepPointFirstEstimate;
+  options.landmarks.reuse_after_moving_start_s = reuse_s;
+  const SimReplay r = ReplaySimulation(Simulate(sim), options);
+  std::printf("%s start, reuse for %.0f s: %s, ATE %.6f m, at most %lld "
+              "world points, %lld marginalisations\n",
+              in_motion ? "in-motion" : "static", reuse_s,
+              r.summary.starts.empty()
+                  ? "no start"
+                  : InitMethodName(r.summary.starts.front().method),
+              r.ate_rmse_m, static_cast<long long>(r.summary.most_world_points),
+              static_cast<long long>(r.summary.marginalizations));
+  return r;
+}
+
+TEST(EstimatorKeepPoint, ReuseAfterMovingStartOnlyAfterAStartInMotion) {
+  // Longer than the run: after a start in motion no track ever becomes a
+  // world point; after a static start the key does nothing.
+  const SimReplay moving = ReplayStart(true, 100.0);
+  ASSERT_FALSE(moving.summary.starts.empty());
+  EXPECT_NE(moving.summary.starts.front().method, InitMethod::kStatic);
+  EXPECT_GT(moving.summary.marginalizations, 20);
+  EXPECT_EQ(moving.summary.most_world_points, 0);
+  EXPECT_EQ(moving.summary.resets, 0);
+  const SimReplay moving_now = ReplayStart(true, 0.0);
+  EXPECT_GT(moving_now.summary.most_world_points, 0);
+  const SimReplay still = ReplayStart(false, 100.0);
+  ASSERT_FALSE(still.summary.starts.empty());
+  EXPECT_EQ(still.summary.starts.front().method, InitMethod::kStatic);
+  EXPECT_GT(still.summary.most_world_points, 0);
+  // Shorter than the run: world points once the span has passed.
+  const SimReplay moving_4s = ReplayStart(true, 4.0);
+  EXPECT_GT(moving_4s.summary.most_world_points, 0);
+  EXPECT_EQ(moving_4s.summary.marginalization_failures, 0);
+  EXPECT_EQ(moving_4s.summary.resets, 0);
 }
 
 }  // namespace

@@ -135,6 +135,8 @@ Args Parse(int argc, char** argv) {
     } else if (s == "--ate-only") {
       a.ate = true;
       a.ate_only = true;
+    } else if (s == "--ate-run") {
+      a.ate_run_only.push_back(std::stoi(value()));
     } else if (s == "--estimator-config") {
       a.estimator_config = value();
     } else if (s == "--cut") {

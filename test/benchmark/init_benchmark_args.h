@@ -84,6 +84,10 @@ struct Args {
   // turn (<= 0: those).
   double cut_s = -1.0;
   bool ate_only = false;  // --ate-only: not the start figures
+  // --ate-run K (repeatable): the same-sequence comparison replays only
+  // run K of the --ate-runs (seed 2000 + K, its phase and cut unchanged), so
+  // that a few runs of the full set can be measured alone. Empty: all.
+  std::vector<int> ate_run_only;
 };
 
 // The estimator options for replaying `simulation`

@@ -101,6 +101,11 @@ void SameSequenceAte(const std::string& preset, const Args& args) {
   Distribution start_after_cut, start_scale;
   int no_start = 0;
   for (int k = 0; k < runs; ++k) {
+    if (!args.ate_run_only.empty() &&
+        std::find(args.ate_run_only.begin(), args.ate_run_only.end(), k) ==
+            args.ate_run_only.end()) {
+      continue;
+    }
     SimulatorOptions r = RunOptions(base, k, runs);
     r.motion.still_duration_s = 2.0;
     r.motion.blend_duration_s = 2.0;
