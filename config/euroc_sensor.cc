@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "config/imu_config.h"
@@ -62,9 +63,14 @@ CameraCalibration ReadEurocCameraYaml(const std::string& path) {
   const std::vector<double> d = root.GetVector("distortion_coefficients", 4);
   calibration.distortion_coefficients = {d[0], d[1], d[2], d[3]};
   const std::vector<double> resolution = root.GetVector("resolution", 2);
+  // Whole pixels within an int before the cast (a larger double is undefined
+  // behaviour when converted; the fuzzer found 6.07e10).
+  constexpr double kMaxResolutionPx = 100000.0;
   for (double r : resolution) {
-    if (r != std::floor(r)) {
-      throw ConfigError(root.Where("resolution") + " must hold integers");
+    if (!(r >= 1.0 && r <= kMaxResolutionPx && r == std::floor(r))) {
+      throw ConfigError(root.Where("resolution") +
+                        " must hold whole numbers from 1 to 100000 (got " +
+                        std::to_string(r) + ")");
     }
   }
   calibration.width = static_cast<int>(resolution[0]);

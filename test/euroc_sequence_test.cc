@@ -141,6 +141,14 @@ TEST(EurocSensor, BadCameraValuesAreNamed) {
        "intrinsics: focal lengths must be > 0"},
       {"resolution: [752, 480]", "resolution: [752, x]",
        "resolution[1] must be a number"},
+      {"resolution: [752, 480]", "resolution: [60727200000, 480]",
+       "resolution must hold whole numbers from 1 to 100000 (got "
+       "60727200000.000000)"},
+      {"resolution: [752, 480]", "resolution: [752, 0]",
+       "resolution must hold whole numbers from 1 to 100000 (got 0.000000)"},
+      {"resolution: [752, 480]", "resolution: [752.5, 480]",
+       "resolution must hold whole numbers from 1 to 100000 (got "
+       "752.500000)"},
       {"rate_hz: 20", "rate_hz: fast", "rate_hz must be a number (got 'fast')"},
       {"rows: 4", "rows: 3", "T_BS.rows and cols must both be 4"},
       {"data: [0.0148655429818", "data: [0.5",
