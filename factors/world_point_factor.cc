@@ -27,34 +27,41 @@ WorldPointReprojectionFactor::WorldPointReprojectionFactor(
 bool WorldPointReprojectionFactor::Evaluate(double const* const* parameters,
                                             double* residuals,
                                             double** jacobians) const {
-  return Compute(parameters, residuals, jacobians, /*tangent=*/false);
+  WorldPointReprojection(parameters, xy_, sqrt_info_, p_w_first_,
+                         /*tangent=*/false, residuals, jacobians);
+  return true;
 }
 
 bool WorldPointReprojectionFactor::EvaluateTangent(
     double const* const* parameters, double* residuals,
     double** jacobians) const {
-  return Compute(parameters, residuals, jacobians, /*tangent=*/true);
+  WorldPointReprojection(parameters, xy_, sqrt_info_, p_w_first_,
+                         /*tangent=*/true, residuals, jacobians);
+  return true;
 }
 
-bool WorldPointReprojectionFactor::Compute(double const* const* parameters,
-                                           double* residuals,
-                                           double** jacobians,
-                                           bool tangent) const {
+bool WorldPointReprojection(double const* const* parameters,
+                            const Eigen::Vector2d& xy, double sqrt_info,
+                            const double* p_w_first, bool tangent,
+                            double* residuals, double** jacobians) {
+  constexpr int kPose = WorldPointReprojectionFactor::kPose;
+  constexpr int kExtrinsic = WorldPointReprojectionFactor::kExtrinsic;
+  constexpr int kPoint = WorldPointReprojectionFactor::kPoint;
   const Rigid T_w_b = Rigid::FromBlock(parameters[kPose]);
   const Rigid T_b_c = Rigid::FromBlock(parameters[kExtrinsic]);
   const Eigen::Map<const Eigen::Vector3d> p_w(parameters[kPoint]);
   Eigen::Vector3d p_b = T_w_b.R.transpose() * (p_w - T_w_b.t);
   Eigen::Vector3d p_c = T_b_c.R.transpose() * (p_b - T_b_c.t);
-  ProjectedResidual p = ProjectResidual(p_c, xy_, sqrt_info_);
+  ProjectedResidual p = ProjectResidual(p_c, xy, sqrt_info);
   Eigen::Map<Eigen::Vector2d> r(residuals);
   r = p.r;
-  if (jacobians == nullptr) return true;
-  if (p_w_first_ != nullptr) {
+  if (jacobians == nullptr) return p.active;
+  if (p_w_first != nullptr) {
     // The same chain at the first estimate, for the Jacobians only.
-    const Eigen::Map<const Eigen::Vector3d> p_first(p_w_first_);
+    const Eigen::Map<const Eigen::Vector3d> p_first(p_w_first);
     p_b = T_w_b.R.transpose() * (p_first - T_w_b.t);
     p_c = T_b_c.R.transpose() * (p_b - T_b_c.t);
-    p = ProjectResidual(p_c, xy_, sqrt_info_);
+    p = ProjectResidual(p_c, xy, sqrt_info);
   }
   // d_r_d_h is zero when inactive, so every Jacobian below is then zero.
   const Matrix23 d_r_d_pb = p.d_r_d_h * T_b_c.R.transpose();
@@ -75,7 +82,7 @@ bool WorldPointReprojectionFactor::Compute(double const* const* parameters,
         jacobians[kPoint]);
     d_r_d_p = d_r_d_pb * T_w_b.R.transpose();
   }
-  return true;
+  return p.active;
 }
 
 }  // namespace vio

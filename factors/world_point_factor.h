@@ -55,6 +55,18 @@
 
 namespace vio {
 
+// The residual above of the sighting xy and, when jacobians is not null,
+// the Jacobians of parameters[0..2] (pose, T_b_c, p_w) into jacobians[0..2]
+// (each may be null), ambient or tangent (2 x 6 for the rigid blocks), at
+// p_w_first when it is not null. Returns whether those Jacobians are active
+// (the point in front of the camera where they are taken). The work of
+// WorldPointReprojectionFactor, shared with TimedWorldPointReprojectionFactor
+// (factors/timed_world_point_factor.h), which passes its shifted sighting.
+bool WorldPointReprojection(double const* const* parameters,
+                            const Eigen::Vector2d& xy, double sqrt_info,
+                            const double* p_w_first, bool tangent,
+                            double* residuals, double** jacobians);
+
 class WorldPointReprojectionFactor final
     : public ceres::SizedCostFunction<2, 7, 7, 3>,
       public TangentJacobians {
@@ -74,9 +86,6 @@ class WorldPointReprojectionFactor final
                        double** jacobians) const override;
 
  private:
-  bool Compute(double const* const* parameters, double* residuals,
-               double** jacobians, bool tangent) const;
-
   Eigen::Vector2d xy_;
   double sqrt_info_;
   const double* p_w_first_;

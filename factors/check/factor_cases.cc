@@ -11,6 +11,7 @@ std::vector<FactorCase> AllFactorCases() {
   cases.push_back(MakeStereoTwoFrameReprojectionCase());
   cases.push_back(MakeTimedStereoTwoFrameReprojectionCase());
   cases.push_back(MakeWorldPointReprojectionCase());
+  cases.push_back(MakeTimedWorldPointReprojectionCase());
   cases.push_back(MakeMarginalizationPriorCase());
   cases.push_back(MakePhotometricCase());
   cases.push_back(MakeZeroMotionFactorCase());

@@ -54,13 +54,20 @@ FactorCase MakeTimedStereoTwoFrameReprojectionCase(
     VisualGeometry geometry = VisualGeometry::kMixed);
 
 // The world-point reprojection factor (factors/world_point_factor.h) on the
-// scenes above, the landmark at SceneWorldPoint; check/
+// scenes above, the landmark at SceneWorldPoint (from the anchor's bearing at
+// its pose's time); check/
 // world_point_factor_case.cc. camera1: seen by camera 1 of keyframe j (the
 // scene drawn with kStereoOtherFrame), else camera 0 (kMonoOtherFrame).
 Eigen::Vector3d SceneWorldPoint(const VisualScene& scene);
 FactorInstance MakeWorldPointReprojection(const VisualScene& scene,
                                           bool camera1);
 FactorCase MakeWorldPointReprojectionCase();
+// The same with a time offset (factors/timed_world_point_factor.h): the scene
+// drawn timed, the factor on obs_j (its velocity and t_d_at_stamp) and the
+// scene's t_d as a fourth block.
+FactorInstance MakeTimedWorldPointReprojection(const VisualScene& scene,
+                                               bool camera1);
+FactorCase MakeTimedWorldPointReprojectionCase();
 
 // The marginalisation prior (factors/marginalization_prior.h).
 FactorCase MakeMarginalizationPriorCase();

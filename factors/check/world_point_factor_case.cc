@@ -1,18 +1,24 @@
-// The world-point reprojection factor (factors/world_point_factor.h) on the
-// visual factors' scenes: the scene's landmark placed in the world, seen by
-// camera 0 or camera 1 of keyframe j.
+// The world-point reprojection factors (factors/world_point_factor.h,
+// factors/timed_world_point_factor.h) on the visual factors' scenes: the
+// scene's landmark placed in the world, seen by camera 0 or camera 1 of
+// keyframe j.
 
 #include <memory>
 
 #include "factors/check/factor_cases.h"
 #include "factors/pose_manifold.h"
+#include "factors/timed_world_point_factor.h"
 #include "factors/world_point_factor.h"
 
 namespace vio {
 
 Eigen::Vector3d SceneWorldPoint(const VisualScene& s) {
+  // The anchor's bearing at its pose's time (a timed scene stores it
+  // shifted; an untimed one has no velocity).
+  const Eigen::Vector2d xy_i =
+      s.obs_i.xy - (s.t_d - s.obs_i.t_d_at_stamp) * s.obs_i.velocity;
   return IsometryFromBlock(s.pose_i) * IsometryFromBlock(s.extrinsic0) *
-         (s.obs_i.xy.homogeneous() / s.rho);
+         (xy_i.homogeneous() / s.rho);
 }
 
 FactorInstance MakeWorldPointReprojection(const VisualScene& s, bool camera1) {
@@ -47,6 +53,36 @@ FactorCase MakeWorldPointReprojectionCase() {
                 : VisualTarget::kMonoOtherFrame,
         /*timed=*/false, 1.5);
     return MakeWorldPointReprojection(s, camera1);
+  };
+  return c;
+}
+
+FactorInstance MakeTimedWorldPointReprojection(const VisualScene& s,
+                                              bool camera1) {
+  FactorInstance f = MakeWorldPointReprojection(s, camera1);
+  f.cost = std::make_unique<TimedWorldPointReprojectionFactor>(s.obs_j,
+                                                               s.sqrt_info);
+  f.blocks.push_back({s.t_d});
+  f.manifolds.push_back(nullptr);
+  f.block_names.push_back("t_d");
+  return f;
+}
+
+FactorCase MakeTimedWorldPointReprojectionCase() {
+  FactorCase c;
+  c.name = "world_point_td";
+  c.description =
+      "world_point with time offset, cam0 or cam1 [pose, T_b_c, p_w, t_d]";
+  c.sample = [](std::mt19937& rng) {
+    const bool near = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+    const bool camera1 = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+    const VisualScene s = SampleVisualScene(
+        rng,
+        near ? VisualGeometry::kNearTargetCamera : VisualGeometry::kRealistic,
+        camera1 ? VisualTarget::kStereoOtherFrame
+                : VisualTarget::kMonoOtherFrame,
+        /*timed=*/true, 1.5);
+    return MakeTimedWorldPointReprojection(s, camera1);
   };
   return c;
 }
