@@ -51,12 +51,6 @@ bool EstimatorOptions::Validate(std::string* message) const {
   c.AtLeast("landmarks.max_world_points", landmarks.max_world_points, 0);
   c.NonNegative("landmarks.reuse_after_moving_start_s",
                 landmarks.reuse_after_moving_start_s);
-  // The world-point factor has no time shift (factors/world_point_factor.h).
-  c.Nested("landmarks.",
-           !(landmarks.reanchored_tracks != ReanchoredTracks::kReuse &&
-             estimate_time_offset),
-           "reanchored_tracks keep_point does not support "
-           "estimate_time_offset");
   c.Positive("static_init.window_s", static_init.window_s);
   c.Require(std::isfinite(static_init.block_s) && static_init.block_s > 0.0 &&
                 static_init.block_s <= 0.5 * static_init.window_s,

@@ -52,7 +52,8 @@ enum class ReanchoredTracks {
   // once, the anchor's with a residual of its own), its other sightings stay
   // in the problem as world-point factors, and the point is marginalised out
   // of the prior when its track ends or it is removed
-  // (factors/world_point_factor.h). Not with estimate_time_offset.
+  // (factors/world_point_factor.h; with estimate_time_offset,
+  // factors/timed_world_point_factor.h).
   kKeepPoint,
   // keep_point with the world-point factors' Jacobians taken at the point's
   // first estimate (where the prior first held it).

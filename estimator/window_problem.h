@@ -27,7 +27,9 @@
 //
 // With keep_points (landmarks.reanchored_tracks keep_point) a world-point
 // landmark (feature_manager.h) has one WorldPointReprojectionFactor per
-// sighting, blocks pose_j, T_b_c, p_w; its p_w is a block of the dense
+// sighting, blocks pose_j, T_b_c, p_w (TimedWorldPointReprojectionFactor,
+// with t_d after p_w, when the time offset is estimated, camera 0's and
+// camera 1's sightings alike); its p_w is a block of the dense
 // (not eliminated) system, as the prior may hold it. Its factors come first
 // and are always in the problem (they count against max_landmarks unless
 // points_in_max_landmarks is false). The
@@ -208,6 +210,13 @@ class WindowProblem {
   // keep_points: the factors of every world point with sightings; returns
   // how many (window_problem_points.cc).
   int AddWorldPoints();
+  // The factor of world point l's sighting s (WorldPointReprojectionFactor,
+  // or TimedWorldPointReprojectionFactor when the time offset is estimated),
+  // its tangent Jacobians in *tangent and its blocks (pose, T_b_c, p_w and
+  // t_d when timed) in *blocks.
+  std::unique_ptr<ceres::CostFunction> WorldPointFactor(
+      Landmark& l, const Sighting& s, const TangentJacobians** tangent,
+      std::vector<double*>* blocks) const;
   // keep_points, for OldestFrameMarginalization: converts the landmarks
   // anchored in the oldest frame whose track goes on into world points and
   // returns their ids.

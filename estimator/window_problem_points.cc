@@ -10,14 +10,46 @@
 #include <algorithm>
 
 #include "estimator/window_problem.h"
+#include "factors/timed_world_point_factor.h"
 #include "factors/world_point_factor.h"
 
 namespace vio {
 
+std::unique_ptr<ceres::CostFunction> WindowProblem::WorldPointFactor(
+    Landmark& l, const Sighting& s, const TangentJacobians** tangent,
+    std::vector<double*>* blocks) const {
+  const double sqrt_info =
+      settings_.visual.SqrtInformation(settings_.focal_px[s.camera]);
+  const double* first =
+      settings_.point_first_estimates ? l.p_w_first.data() : nullptr;
+  WindowFrame& frame = *window_->Find(s.frame_id);
+  *blocks = {frame.pose.data(), window_->extrinsics[s.camera].data(),
+             l.p_w.data()};
+  if (!settings_.estimate_time_offset) {
+    auto factor =
+        std::make_unique<WorldPointReprojectionFactor>(s.xy, sqrt_info, first);
+    *tangent = factor.get();
+    return factor;
+  }
+  // The sighting shifted along its own camera's image velocity, predicted
+  // from the frame's current state and the point's current estimate (not
+  // p_w_first: the velocity moves the residual, which is taken at the
+  // current estimate; factors/timed_world_point_factor.h). Camera 1 saw the
+  // point at the same instant as camera 0, so the same t_d - t_d_k shifts it.
+  const Eigen::Vector3d p_c =
+      window_->T_w_c(s.frame_id, s.camera).inverse() *
+      Eigen::Vector3d(l.p_w.data());
+  auto factor = std::make_unique<TimedWorldPointReprojectionFactor>(
+      TimedObservation{s.xy, MotionVelocity(frame, p_c, s.camera),
+                       frame.t_d_at_stamp},
+      sqrt_info, first);
+  *tangent = factor.get();
+  blocks->push_back(&window_->t_d);
+  return factor;
+}
+
 int WindowProblem::AddWorldPoints() {
   int used = 0;
-  double* ext[kMaxCameras] = {window_->extrinsics[0].data(),
-                              window_->extrinsics[1].data()};
   for (auto& [id, l] : features_->landmarks()) {
     if (!l.world_point || l.sightings.empty()) continue;
     for (const Sighting& s : l.sightings) {
@@ -27,14 +59,8 @@ int WindowProblem::AddWorldPoints() {
       r.point = l.p_w.data();
       r.target_frame = s.frame_id;
       r.target_camera = s.camera;
-      r.owned = std::make_unique<WorldPointReprojectionFactor>(
-          s.xy, settings_.visual.SqrtInformation(settings_.focal_px[s.camera]),
-          settings_.point_first_estimates ? l.p_w_first.data() : nullptr);
-      r.tangent =
-          static_cast<const WorldPointReprojectionFactor*>(r.owned.get());
+      r.owned = WorldPointFactor(l, s, &r.tangent, &r.blocks);
       r.cost = r.owned.get();
-      r.blocks = {window_->Find(s.frame_id)->pose.data(), ext[s.camera],
-                  l.p_w.data()};
       AddResidual(std::move(r));
       ++num_visual_;
     }
@@ -146,18 +172,16 @@ void WindowProblem::AddPointMarginalization(
     const bool all = capped.count(id) != 0;
     for (const Sighting& s : l.sightings) {
       if (!all && s.frame_id != oldest.id) continue;
-      double* pose = window_->Find(s.frame_id)->pose.data();
-      converted_factors_.push_back(
-          std::make_unique<WorldPointReprojectionFactor>(
-              s.xy,
-              settings_.visual.SqrtInformation(settings_.focal_px[s.camera]),
-              settings_.point_first_estimates ? l.p_w_first.data() : nullptr));
+      // As AddWorldPoints builds it: timed (on t_d, a kept block) when the
+      // time offset is estimated.
+      const TangentJacobians* tangent = nullptr;
+      std::vector<double*> blocks;
+      converted_factors_.push_back(WorldPointFactor(l, s, &tangent, &blocks));
       m->residual_blocks.push_back(
-          {converted_factors_.back().get(),
-           loss_.get(),
-           {pose, window_->extrinsics[s.camera].data(), l.p_w.data()}});
-      touched->insert(pose);
-      touched->insert(window_->extrinsics[s.camera].data());
+          {converted_factors_.back().get(), loss_.get(), blocks});
+      for (double* b : blocks) {
+        if (b != l.p_w.data()) touched->insert(b);
+      }
     }
     m->parameter_blocks.push_back({l.p_w.data(), 3, nullptr, false});
   }

@@ -52,6 +52,21 @@ TEST(ReanchoredTracks, NamesParseBack) {
   EXPECT_FALSE(ParseReanchoredTracks("skip_prior", &r));
 }
 
+// The world points have a timed factor (factors/timed_world_point_factor.h):
+// every landmark choice goes with an estimated time offset.
+TEST(EstimatorOptions, KeptPointsGoWithAnEstimatedTimeOffset) {
+  for (ReanchoredTracks r :
+       {ReanchoredTracks::kReuse, ReanchoredTracks::kKeepPoint,
+        ReanchoredTracks::kKeepPointFirstEstimate}) {
+    EstimatorOptions o;
+    o.landmarks.reanchored_tracks = r;
+    o.estimate_time_offset = true;
+    std::string message;
+    EXPECT_TRUE(o.Validate(&message))
+        << ReanchoredTracksName(r) << ": " << message;
+  }
+}
+
 TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
   struct Case {
     void (*spoil)(EstimatorOptions*);
@@ -70,12 +85,6 @@ TEST(EstimatorOptions, ValidateNamesTheOffendingField) {
              std::numeric_limits<double>::quiet_NaN();
        },
        "landmarks.outlier_threshold_px must be > 0"},
-      {[](EstimatorOptions* o) {
-         o->landmarks.reanchored_tracks = ReanchoredTracks::kKeepPoint;
-         o->estimate_time_offset = true;
-       },
-       "landmarks.reanchored_tracks keep_point does not support "
-       "estimate_time_offset"},
       {[](EstimatorOptions* o) { o->solver.max_time_s = -0.01; },
        "solver.max_time_s must be >= 0"},
       {[](EstimatorOptions* o) { o->solver.function_tolerance = -1e-3; },
