@@ -49,6 +49,15 @@ Eigen::Vector2d Evaluate(const ceres::CostFunction& f,
   return r;
 }
 
+// tools/jacobian_check runs it (AllFactorCases is its table).
+TEST(TimedWorldPointReprojectionFactor, IsRegisteredInJacobianCheck) {
+  int found = 0;
+  for (const FactorCase& c : AllFactorCases()) {
+    found += c.name == "world_point_td" ? 1 : 0;
+  }
+  EXPECT_EQ(found, 1);
+}
+
 TEST(TimedWorldPointReprojectionFactor, JacobiansMatchNumericDiff) {
   const FactorCase c = MakeTimedWorldPointReprojectionCase();
   std::mt19937 rng(42);
