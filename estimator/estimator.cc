@@ -75,8 +75,9 @@ Estimator::Estimator(const EstimatorOptions& options,
       init_(options, Extrinsics(cameras), FirstFocal(cameras), noise,
             preintegration),
       zero_velocity_(options.zero_velocity, FirstFocal(cameras)),
-      realign_(options, cameras.empty() ? Eigen::Isometry3d::Identity()
-                                        : cameras.front().T_b_c,
+      realign_(options,
+               cameras.empty() ? Eigen::Isometry3d::Identity()
+                               : cameras.front().T_b_c,
                FirstFocal(cameras), noise, preintegration),
       features_(options.use_stereo ? 2 : 1),
       imu_filter_(options.imu_stream.range, preintegration.max_sample_gap) {

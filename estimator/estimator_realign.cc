@@ -98,7 +98,8 @@ bool Estimator::AdjustSpan(InitialWindow* span) const {
     span->frames[k].v_w = w.frames[k]->v_w_value();
     span->frames[k].q_w_b =
         Eigen::Quaterniond(w.frames[k]->pose.data() + kPoseQ).normalized();
-    span->frames[k].b_a = Eigen::Vector3d(w.frames[k]->speed_bias.data() + kSbBa);
+    span->frames[k].b_a =
+        Eigen::Vector3d(w.frames[k]->speed_bias.data() + kSbBa);
   }
   return true;
 }

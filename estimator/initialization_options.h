@@ -135,7 +135,7 @@ struct MonoInitOptions {
   // window, its points and the marginalisation prior's linearisation point
   // are rescaled (estimator/window_rescale.h). 0: off [s].
   double realign_after_s = 0.0;
-  double realign_window_s = 4.0;               // [s]
+  double realign_window_s = 4.0;                // [s]
   double realign_max_scale_uncertainty = 0.05;  // [-]
   double realign_min_change = 0.03;             // [-]
 };

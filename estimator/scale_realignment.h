@@ -36,8 +36,8 @@ namespace vio {
 
 // The outcome of one try.
 struct RealignmentResult {
-  bool done = false;    // a scale was found (its figures below)
-  double scale = 1.0;   // the factor the window's scale is to be multiplied by
+  bool done = false;   // a scale was found (its figures below)
+  double scale = 1.0;  // the factor the window's scale is to be multiplied by
   double scale_sigma = 0.0;  // relative std of the new span's scale [-]
   int common_frames = 0;     // frames of the new span inside the window
 };

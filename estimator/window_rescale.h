@@ -35,8 +35,8 @@ namespace vio {
 //   p -> c + s R (p - c),  v -> s R v,  q -> R q,  b_a -> b_a + delta_b_a.
 struct WindowCorrection {
   double s = 1.0;
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  // a world rotation
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();      // [m]
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();      // a world rotation
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();          // [m]
   Eigen::Vector3d delta_b_a = Eigen::Vector3d::Zero();  // [m/s^2]
 };
 

@@ -71,7 +71,8 @@ TEST(ScaleRealignment, CorrectsAStartFortyPercentShort) {
   const RealignmentRecord& r = on.summary.realignments.front();
   EXPECT_TRUE(r.applied);
   EXPECT_GT(r.result.scale, 1.1);  // the window was short
-  EXPECT_LE(r.result.scale_sigma, options.init.mono.realign_max_scale_uncertainty);
+  EXPECT_LE(r.result.scale_sigma,
+            options.init.mono.realign_max_scale_uncertainty);
   // The trajectory put out over the 2 s after it: its scale.
   const int64_t from = r.t_ns, to = r.t_ns + 2000000000LL;
   const double e_on = OutputScaleError(sim, on.outputs, from, to);

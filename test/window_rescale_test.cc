@@ -27,8 +27,8 @@ Window MakeWindow(int n) {
     f->t_ns = f->t_imu_ns = 1000000000LL + 100000000LL * k;
     const double a = 0.3 * k;
     f->p_w_b() = Eigen::Vector3d(2.0 * std::cos(a), 1.5 * std::sin(a), 0.2 * k);
-    f->q_w_b() = Eigen::Quaterniond(
-        Eigen::AngleAxisd(0.1 * k, Eigen::Vector3d(0.2, 0.3, 1.0).normalized()));
+    f->q_w_b() = Eigen::Quaterniond(Eigen::AngleAxisd(
+        0.1 * k, Eigen::Vector3d(0.2, 0.3, 1.0).normalized()));
     f->v_w() = Eigen::Vector3d(-0.6 * std::sin(a), 0.45 * std::cos(a), 0.2);
     f->b_a() = Eigen::Vector3d(0.01, -0.02, 0.03);
     f->b_g() = Eigen::Vector3d(0.001, 0.002, -0.003);
@@ -96,9 +96,8 @@ TEST(CorrectWindow, MapsPositionsVelocitiesAttitudesAndPointsBySimilarity) {
   const Window before = MakeWindow(4);
   std::vector<Eigen::Vector3d> points_before;
   for (const auto& [id, l] : features.landmarks()) {
-    points_before.push_back(l.world_point
-                                ? Eigen::Vector3d(l.p_w.data())
-                                : PointOf(l, w));
+    points_before.push_back(l.world_point ? Eigen::Vector3d(l.p_w.data())
+                                          : PointOf(l, w));
   }
   const Eigen::Vector3d p_w_first_before(
       features.landmarks().at(4).p_w_first.data());
@@ -156,10 +155,11 @@ TEST(CorrectPrior, SaysOfTheCorrectedStateWhatItSaidOfTheOriginal) {
       w.frames[1]->pose.data(), point, extrinsic};
   // A prior with a random square root and offset, linearised at the
   // current values.
-  std::vector<PriorBlock> kinds = {
-      {PriorBlockKind::kPose, {}}, {PriorBlockKind::kEuclidean, {}},
-      {PriorBlockKind::kPose, {}}, {PriorBlockKind::kEuclidean, {}},
-      {PriorBlockKind::kPose, {}}};
+  std::vector<PriorBlock> kinds = {{PriorBlockKind::kPose, {}},
+                                   {PriorBlockKind::kEuclidean, {}},
+                                   {PriorBlockKind::kPose, {}},
+                                   {PriorBlockKind::kEuclidean, {}},
+                                   {PriorBlockKind::kPose, {}}};
   const int sizes[] = {7, 9, 7, 3, 7};
   for (size_t b = 0; b < kinds.size(); ++b) {
     kinds[b].x0.assign(blocks[b], blocks[b] + sizes[b]);
@@ -180,7 +180,8 @@ TEST(CorrectPrior, SaysOfTheCorrectedStateWhatItSaidOfTheOriginal) {
     b[0] += 0.05;
     b[1] -= 0.02;
     Eigen::Map<Eigen::Quaterniond> q(b + 3);
-    q = (q * Eigen::Quaterniond(Eigen::AngleAxisd(0.03, Eigen::Vector3d::UnitY())))
+    q = (q *
+         Eigen::Quaterniond(Eigen::AngleAxisd(0.03, Eigen::Vector3d::UnitY())))
             .normalized();
   }
   blocks[1][0] += 0.1;
