@@ -87,6 +87,11 @@ void ReadInit(const YamlNode& n, InitOptions* o) {
   o->mono.gyro_min_parallax_px = m.Get<double>("gyro_min_parallax_px");
   o->mono.gyro_max_refine_change_sigmas =
       m.Get<double>("gyro_max_refine_change_sigmas");
+  o->mono.realign_after_s = m.Get<double>("realign_after_s");
+  o->mono.realign_window_s = m.Get<double>("realign_window_s");
+  o->mono.realign_max_scale_uncertainty =
+      m.Get<double>("realign_max_scale_uncertainty");
+  o->mono.realign_min_change = m.Get<double>("realign_min_change");
   const YamlNode s = n.Child("stereo");
   o->stereo.window_s = s.Get<double>("window_s");
   o->stereo.min_span_s = s.Get<double>("min_span_s");

@@ -75,6 +75,10 @@ Estimator::Estimator(const EstimatorOptions& options,
       init_(options, Extrinsics(cameras), FirstFocal(cameras), noise,
             preintegration),
       zero_velocity_(options.zero_velocity, FirstFocal(cameras)),
+      realign_(options,
+               cameras.empty() ? Eigen::Isometry3d::Identity()
+                               : cameras.front().T_b_c,
+               FirstFocal(cameras), noise, preintegration),
       features_(options.use_stereo ? 2 : 1),
       imu_filter_(options.imu_stream.range, preintegration.max_sample_gap) {
   std::string message;
@@ -106,7 +110,10 @@ void Estimator::AddImu(const ImuSample& sample) {
     ++summary_.imu_out_of_order;
     return;
   }
+  const size_t before = imu_.size();
   const ImuScreening screening = imu_filter_.Add(sample, &imu_);
+  // The samples the filter let through (it may hold some back).
+  for (size_t i = before; i < imu_.size(); ++i) realign_.AddImu(imu_[i]);
   if (screening != ImuScreening::kAccepted &&
       summary_.imu_first_glitch_t_ns < 0) {
     summary_.imu_first_glitch_t_ns = sample.t_ns;
@@ -290,6 +297,7 @@ void Estimator::DropSecondNewest() {
 void Estimator::Reset(int64_t t_ns, Failure reason) {
   ++summary_.resets;
   summary_.reset_log.push_back({t_ns, reason});
+  realign_.Stop();
   prior_.reset();
   prior_blocks_.clear();
   DropWorldPoints();
@@ -381,6 +389,7 @@ bool Estimator::ProcessFrame(const FeatureFrame& frame, int64_t t_imu_ns,
       (window_.frames[n - 2]->imu || !window_.frames[n - 1]->imu)) {
     DropSecondNewest();
   }
+  Realign(frame, t_imu_ns);
   summary_.landmarks_triangulated +=
       features_.TriangulateNew(PoseFn(), options_.triangulation);
   // Ceres stops the program on a non-finite block: never hand it one.

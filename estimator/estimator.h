@@ -52,6 +52,7 @@
 #include "estimator/initial_window.h"
 #include "estimator/initialization.h"
 #include "estimator/landmark_map.h"
+#include "estimator/scale_realignment.h"
 #include "estimator/static_initializer.h"
 #include "estimator/value_histogram.h"
 #include "estimator/window.h"
@@ -174,6 +175,9 @@ struct EstimatorSummary {
   std::vector<StartRecord> starts;
   int64_t reinitializations = 0;     // starts after a reset
   int64_t zero_velocity_frames = 0;  // frames held by the zero-motion factor
+  // Scales found by the realignment after a monocular start in motion
+  // (estimator/scale_realignment.h), applied or not.
+  std::vector<RealignmentRecord> realignments;
 };
 
 // Why the run never started (the attempts' reasons, or why none was made),
@@ -290,6 +294,8 @@ class Estimator {
   void MarginalizeOldest(const WindowProblem& problem,
                          const OutlierReport& outliers);
   void UpdateImuLinearization();
+  void Realign(const FeatureFrame& frame, int64_t t_imu_ns);
+  bool AdjustSpan(InitialWindow* span) const;
   WindowProblemSettings ProblemSettings() const;
   // landmarks.reuse_after_moving_start_s: the newest frame before
   // reuse_tracks_until_ns_ and no world point yet (estimator_window.cc).
@@ -326,6 +332,7 @@ class Estimator {
 
   Initialization init_;
   ZeroVelocityDetector zero_velocity_;
+  ScaleRealignment realign_;
   bool newest_still_ = false;    // the last processed frame was still
   bool reinit_pending_ = false;  // a reset while moving awaits a re-start
   FeatureManager features_;

@@ -144,6 +144,15 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   summary_.keyframes += static_cast<int64_t>(n) - 1;
   newest_still_ = StillNow(window_.frames.back()->v_w_value().norm());
   for (const auto& f : window_.frames) record.window.push_back(StateOf(*f));
+  realign_.Stop();
+  if (start.method == InitMethod::kMono ||
+      start.method == InitMethod::kGyroAided) {
+    std::vector<BufferedFrame> frames;
+    for (const InitialFrame& f : start.frames) {
+      frames.push_back({f.t_ns, f.t_imu_ns, f.observations});
+    }
+    realign_.Begin(frames, record.t_ns);
+  }
   summary_.starts.push_back(std::move(record));
   if (restart) ++summary_.reinitializations;
   return true;

@@ -69,6 +69,11 @@ bool InitOptions::Validate(bool stereo_available, int window_size,
   r.Positive("init.mono.gyro_min_parallax_px", mono.gyro_min_parallax_px);
   r.Positive("init.mono.gyro_max_refine_change_sigmas",
              mono.gyro_max_refine_change_sigmas);
+  r.NonNegative("init.mono.realign_after_s", mono.realign_after_s);
+  r.Positive("init.mono.realign_window_s", mono.realign_window_s);
+  r.Positive("init.mono.realign_max_scale_uncertainty",
+             mono.realign_max_scale_uncertainty);
+  r.NonNegative("init.mono.realign_min_change", mono.realign_min_change);
   r.Positive("init.stereo.window_s", stereo.window_s);
   r.Positive("init.stereo.min_span_s", stereo.min_span_s);
   r.Require(stereo.min_span_s <= stereo.window_s, "init.stereo.min_span_s",

@@ -126,6 +126,18 @@ struct MonoInitOptions {
   // sigma; that sigma itself must be within max_scale_uncertainty
   // (gyro_aided_refinement_check.h) [-].
   double gyro_max_refine_change_sigmas = 3.0;
+  // The scale looked at again after a monocular (or gyroscope-aided) start
+  // (estimator/scale_realignment.h): realign_after_s after it the monocular
+  // start runs again over the last realign_window_s of frames (tried every
+  // few frames for up to realign_window_s more); when its scale's relative
+  // std is at most realign_max_scale_uncertainty and the running window's
+  // scale is off from it by at least realign_min_change (relative), the
+  // window, its points and the marginalisation prior's linearisation point
+  // are rescaled (estimator/window_rescale.h). 0: off [s].
+  double realign_after_s = 0.0;
+  double realign_window_s = 4.0;                // [s]
+  double realign_max_scale_uncertainty = 0.05;  // [-]
+  double realign_min_change = 0.03;             // [-]
 };
 
 // Stereo start in motion: depths from the first stereo pair, later frames by

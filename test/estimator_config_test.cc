@@ -102,6 +102,11 @@ TEST(EstimatorConfig, DefaultYamlEqualsTheBuiltInDefaults) {
   EXPECT_EQ(o.init.mono.gyro_min_parallax_px, d.init.mono.gyro_min_parallax_px);
   EXPECT_EQ(o.init.mono.gyro_max_refine_change_sigmas,
             d.init.mono.gyro_max_refine_change_sigmas);
+  EXPECT_EQ(o.init.mono.realign_after_s, d.init.mono.realign_after_s);
+  EXPECT_EQ(o.init.mono.realign_window_s, d.init.mono.realign_window_s);
+  EXPECT_EQ(o.init.mono.realign_max_scale_uncertainty,
+            d.init.mono.realign_max_scale_uncertainty);
+  EXPECT_EQ(o.init.mono.realign_min_change, d.init.mono.realign_min_change);
   EXPECT_EQ(o.init.stereo.window_s, d.init.stereo.window_s);
   EXPECT_EQ(o.init.stereo.min_span_s, d.init.stereo.min_span_s);
   EXPECT_EQ(o.init.stereo.min_stereo_points, d.init.stereo.min_stereo_points);

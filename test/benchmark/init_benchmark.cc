@@ -41,7 +41,10 @@
 // refine_prescreen_threshold_px and max_refine_scale_change;
 // --mono-outlier-rounds, --mono-outlier-px and --mono-max-outlier-share
 // init.mono's outlier_rounds, outlier_threshold_px and max_outlier_share,
-// --mono-refine-rounds its refine_outlier_rounds;
+// --mono-refine-rounds its refine_outlier_rounds; --realign-after,
+// --realign-window, --realign-max-sigma and --realign-min-change its
+// realign_after_s, realign_window_s, realign_max_scale_uncertainty and
+// realign_min_change;
 // --min-parallax,
 // --min-correspondences, --gyro-aided and --gyro-max-change-sigmas override
 // init.mono's options, to measure them. --estimator-config FILE starts the

@@ -56,6 +56,18 @@ EstimatorOptions OptionsOf(const SimulatorOptions& simulation,
   if (args.mono_outlier_px > 0.0) {
     o.init.mono.outlier_threshold_px = args.mono_outlier_px;
   }
+  if (args.realign_after_s >= 0.0) {
+    o.init.mono.realign_after_s = args.realign_after_s;
+  }
+  if (args.realign_window_s > 0.0) {
+    o.init.mono.realign_window_s = args.realign_window_s;
+  }
+  if (args.realign_max_sigma > 0.0) {
+    o.init.mono.realign_max_scale_uncertainty = args.realign_max_sigma;
+  }
+  if (args.realign_min_change >= 0.0) {
+    o.init.mono.realign_min_change = args.realign_min_change;
+  }
   if (args.mono_max_outlier_share > 0.0) {
     o.init.mono.max_outlier_share = args.mono_max_outlier_share;
   }
@@ -123,6 +135,14 @@ Args Parse(int argc, char** argv) {
       a.mono_outlier_px = std::stod(value());
     } else if (s == "--mono-refine-rounds") {
       a.mono_refine_rounds = std::stoi(value());
+    } else if (s == "--realign-after") {
+      a.realign_after_s = std::stod(value());
+    } else if (s == "--realign-window") {
+      a.realign_window_s = std::stod(value());
+    } else if (s == "--realign-max-sigma") {
+      a.realign_max_sigma = std::stod(value());
+    } else if (s == "--realign-min-change") {
+      a.realign_min_change = std::stod(value());
     } else if (s == "--mono-max-outlier-share") {
       a.mono_max_outlier_share = std::stod(value());
     } else if (s == "--ate-runs") {

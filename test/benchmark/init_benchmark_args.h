@@ -63,6 +63,12 @@ struct Args {
   int mono_outlier_rounds = -1;
   double mono_outlier_px = -1.0;
   double mono_max_outlier_share = -1.0;
+  // init.mono.realign_after_s, realign_window_s,
+  // realign_max_scale_uncertainty, realign_min_change (< 0: the config's).
+  double realign_after_s = -1.0;
+  double realign_window_s = -1.0;
+  double realign_max_sigma = -1.0;
+  double realign_min_change = -1.0;
   // init.mono.refine_outlier_rounds (< 0: the config's).
   int mono_refine_rounds = -1;
   // --estimator-config FILE: the estimator options start from that

@@ -141,6 +141,14 @@ void SameSequenceAte(const std::string& preset, const Args& args) {
         after_s, InitMethodName(start.method), 100.0 * scale, a, b, a / b,
         static_cast<long long>(moving.summary.resets),
         static_cast<long long>(rest.summary.resets));
+    for (const RealignmentRecord& re : moving.summary.realignments) {
+      std::printf(
+          "    realignment %.2f s after the cut: scale x %.3f (std %.1f %%, "
+          "%d frames), %s\n",
+          1e-9 * static_cast<double>(re.t_ns - t0_ns), re.result.scale,
+          100.0 * re.result.scale_sigma, re.result.common_frames,
+          re.applied ? "applied" : "not applied");
+    }
     for (size_t i = 0; i < args.ate_from_s.size(); ++i) {
       const int64_t from = t0_ns + std::llround(args.ate_from_s[i] * 1e9);
       const double ai = Ate(sim, moving, from), bi = Ate(sim, rest, from);
