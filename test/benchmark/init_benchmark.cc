@@ -23,7 +23,9 @@
 // over the frames from S seconds after the cut (after the first frame with
 // --ate-separate) on, aligned on those alone; --ate-runs N replays
 // min(N, --seeds) sequences per preset instead of 5; --ate-only skips the
-// start figures.
+// start figures. With --verbose the same-sequence comparison also prints per
+// run both runs' tilt, accelerometer- and gyroscope-bias errors at t0 + 0,
+// 1, 2, 4, 8, 16 and 32 s (the first estimate at or after each).
 //
 // --first-seed N: the trials' seeds are N, N+1, ... (default 1000; the start
 // phases stay spread over the lap whatever N), so that a limit chosen on one

@@ -63,6 +63,50 @@ double StartScaleError(const Simulation& sim, const StartRecord& start) {
   return testing::Spread(est) / testing::Spread(truth) - 1.0;
 }
 
+// The truth at t_ns (the first state at or after it; the last one past the
+// end).
+const StampedState& TruthNear(const Simulation& sim, int64_t t_ns) {
+  const auto it = std::lower_bound(
+      sim.ground_truth.begin(), sim.ground_truth.end(), t_ns,
+      [](const StampedState& x, int64_t t) { return x.t_ns < t; });
+  return it == sim.ground_truth.end() ? sim.ground_truth.back() : *it;
+}
+
+// The angle between the estimated and the true world z seen from the body
+// [deg]: the tilt error, whatever the yaw.
+double TiltErrorDeg(const Eigen::Quaterniond& q_est,
+                    const Eigen::Quaterniond& q_true) {
+  const Eigen::Vector3d z_est = q_est.conjugate() * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d z_true = q_true.conjugate() * Eigen::Vector3d::UnitZ();
+  return std::atan2(z_est.cross(z_true).norm(), z_est.dot(z_true)) * 180.0 /
+         M_PI;
+}
+
+// --verbose: both runs' tilt error [deg] and accelerometer-bias error
+// [m/s^2] at the first estimate at or after t_ns ("-" where there is none).
+void PrintStateErrors(const Simulation& sim, const testing::SimReplay& moving,
+                      const testing::SimReplay& rest, int64_t t_ns,
+                      double after_s) {
+  auto at = [&](const testing::SimReplay& run) -> const EstimatorOutput* {
+    for (const EstimatorOutput& o : run.outputs) {
+      if (o.processed && o.initialized && o.t_ns >= t_ns) return &o;
+    }
+    return nullptr;
+  };
+  const EstimatorOutput* m = at(moving);
+  const EstimatorOutput* r = at(rest);
+  if (m == nullptr || r == nullptr) return;
+  const StampedState& gm = TruthNear(sim, m->t_ns);
+  const StampedState& gr = TruthNear(sim, r->t_ns);
+  std::printf(
+      "    state at t0 + %.1f s: tilt in motion %.3f deg, from rest %.3f deg; "
+      "|b_a error| in motion %.4f, from rest %.4f m/s^2; |b_g error| in "
+      "motion %.5f, from rest %.5f rad/s\n",
+      after_s, TiltErrorDeg(m->q_w_b, gm.q_w_b), TiltErrorDeg(r->q_w_b, gr.q_w_b),
+      (m->b_a - gm.b_a).norm(), (r->b_a - gr.b_a).norm(),
+      (m->b_g - gm.b_g).norm(), (r->b_g - gr.b_g).norm());
+}
+
 // One window of the comparison (the common frames, or from t0 + S): both
 // runs' ATEs and their ratio per run.
 struct Comparison {
@@ -148,6 +192,11 @@ void SameSequenceAte(const std::string& preset, const Args& args) {
           1e-9 * static_cast<double>(re.t_ns - t0_ns), re.result.scale,
           100.0 * re.result.scale_sigma, re.result.common_frames,
           re.applied ? "applied" : "not applied");
+    }
+    if (args.verbose) {
+      for (const double s : {0.0, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0}) {
+        PrintStateErrors(sim, moving, rest, t0_ns + std::llround(s * 1e9), s);
+      }
     }
     for (size_t i = 0; i < args.ate_from_s.size(); ++i) {
       const int64_t from = t0_ns + std::llround(args.ate_from_s[i] * 1e9);
