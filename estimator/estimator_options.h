@@ -72,14 +72,18 @@ struct LandmarkOptions {
   // Landmarks per step at most, those with the most sightings first [-].
   int max_landmarks = 120;
   // What happens to the landmarks anchored in a keyframe that is
-  // marginalised.
-  ReanchoredTracks reanchored_tracks = ReanchoredTracks::kReuse;
+  // marginalised. keep_point_fej by default (config/default.yaml): reuse
+  // counts a sighting once per keyframe its track spans and is overconfident
+  // (NEES 3.72 per dimension on sim_default against 1.13;
+  // docs/recorded_flights.md, "The mono configurations switched").
+  ReanchoredTracks reanchored_tracks =
+      ReanchoredTracks::kKeepPointFirstEstimate;
   // keep_point: whether the world points take places of max_landmarks.
   // They are always in the problem (the prior holds them), so when they
   // count, long old tracks crowd out new landmarks (with stereo's 60, most
   // places); false puts them on top of max_landmarks inverse-depth
   // landmarks (docs/recorded_flights.md, "A keep_point variant").
-  bool world_points_in_max_landmarks = true;
+  bool world_points_in_max_landmarks = false;
   // keep_point: at most this many world points stay after a
   // marginalisation (0: no bound). The excess, those whose last sighting is
   // oldest first (the points that would leave the window soonest: tracks the
@@ -88,14 +92,14 @@ struct LandmarkOptions {
   // on as a new landmark. Each sighting still enters the prior once; what is
   // bounded is the dense part of the solver's system and of the prior
   // (docs/recorded_flights.md, "A bound on the world points").
-  int max_world_points = 0;
+  int max_world_points = 50;
   // keep_point*: for this many seconds after a start in motion (any start
   // but the static one) the leaving keyframe's landmarks are handled as
   // reuse, keep_point after it (0: keep_point from the start). A start in
   // motion's scale and biases are still being corrected then; a world point
   // made in that time is held by the prior where the wrong scale put it
   // (docs/recorded_flights.md, "Starts in motion and keep_point").
-  double reuse_after_moving_start_s = 0.0;
+  double reuse_after_moving_start_s = 4.0;
 };
 
 // Static start: the IMU tells when the vehicle stands still.
@@ -196,7 +200,7 @@ struct SolverOptions {
   // iterations): the same steps to a relative residual of 1e-6 at a
   // fraction of the factor's cost where the reduced system is wide (world
   // points; docs/speed.md). false: a factor per linearisation.
-  bool kept_factor_pcg = false;
+  bool kept_factor_pcg = true;
 };
 
 struct EstimatorOptions {

@@ -160,20 +160,20 @@ TEST(EstimatorConfig, ErrorsNameFileAndKey) {
             "test.yaml: estimator.window_size must be >= 2 (got 1)");
   EXPECT_EQ(ErrorOf(Replace(text, "    max_landmarks: 120", "")),
             "test.yaml: estimator.landmarks.max_landmarks is missing");
-  EXPECT_EQ(ErrorOf(Replace(text, "    world_points_in_max_landmarks: true",
+  EXPECT_EQ(ErrorOf(Replace(text, "    world_points_in_max_landmarks: false",
                             "")),
             "test.yaml: estimator.landmarks.world_points_in_max_landmarks is "
             "missing");
-  EXPECT_EQ(ErrorOf(Replace(text, "    max_world_points: 0", "")),
+  EXPECT_EQ(ErrorOf(Replace(text, "    max_world_points: 50", "")),
             "test.yaml: estimator.landmarks.max_world_points is missing");
-  EXPECT_EQ(ErrorOf(Replace(text, "    max_world_points: 0 ",
+  EXPECT_EQ(ErrorOf(Replace(text, "    max_world_points: 50 ",
                             "    max_world_points: -1 ")),
             "test.yaml: estimator.landmarks.max_world_points must be >= 0 "
             "(got -1)");
-  EXPECT_EQ(ErrorOf(Replace(text, "    reuse_after_moving_start_s: 0 ", "")),
+  EXPECT_EQ(ErrorOf(Replace(text, "    reuse_after_moving_start_s: 4 ", "")),
             "test.yaml: estimator.landmarks.reuse_after_moving_start_s is "
             "missing");
-  EXPECT_EQ(ErrorOf(Replace(text, "reuse_after_moving_start_s: 0 ",
+  EXPECT_EQ(ErrorOf(Replace(text, "reuse_after_moving_start_s: 4 ",
                             "reuse_after_moving_start_s: -1 ")),
             "test.yaml: estimator.landmarks.reuse_after_moving_start_s must "
             "be >= 0 (got -1)");
