@@ -253,6 +253,14 @@ class Estimator {
   // first start and on the newest of a re-start (`restart`), the frame
   // SetGauge gave the running pose.
   bool BuildWindow(const InitialWindow& start, bool restart);
+  // Appends an initialiser's frames to *w as keyframes, ids from *next_id
+  // on, preintegrated on `imu` from the previous frame's biases, their
+  // observations to *features; adds the observations AddFrame skipped to
+  // *skipped. False when a preintegration refuses its interval.
+  bool AppendInitialFrames(const std::vector<InitialFrame>& frames,
+                           const std::vector<ImuSample>& imu, Window* w,
+                           FeatureManager* features, int64_t* next_id,
+                           int64_t* skipped) const;
   InitFailure RefineStart(InitMethod method, InitDiagnostics* diagnostics,
                           double* value, double* limit);
   // After a reset while moving: feeds the in-motion initialiser and, when it

@@ -27,32 +27,9 @@ bool Estimator::AdjustSpan(InitialWindow* span) const {
   FeatureManager features(window_.num_cameras);
   const std::vector<ImuSample>& imu = realign_.imu();
   int64_t id = 0;
-  for (const InitialFrame& s : span->frames) {
-    auto f = std::make_unique<WindowFrame>();
-    if (!w.frames.empty()) {
-      const WindowFrame& prev = *w.frames.back();
-      try {
-        f->imu = std::make_unique<ImuPreintegration>(
-            prev.t_imu_ns, s.t_imu_ns, imu,
-            Eigen::Vector3d(prev.speed_bias.data() + kSbBa), prev.b_g_value(),
-            noise_, preintegration_);
-      } catch (const std::invalid_argument&) {
-        return false;
-      }
-    }
-    f->id = id++;
-    f->t_ns = s.t_ns;
-    f->t_imu_ns = s.t_imu_ns;
-    f->t_d_at_stamp = w.t_d;
-    f->gyr_b = GyroscopeAt(imu, s.t_imu_ns);
-    f->keyframe = true;
-    f->p_w_b() = s.p_w_b;
-    f->q_w_b() = s.q_w_b.normalized();
-    f->v_w() = s.v_w;
-    f->b_a() = s.b_a;
-    f->b_g() = s.b_g;
-    features.AddFrame(f->id, s.observations);
-    w.frames.push_back(std::move(f));
+  int64_t skipped = 0;  // counted once already, by the running estimator
+  if (!AppendInitialFrames(span->frames, imu, &w, &features, &id, &skipped)) {
+    return false;
   }
   const CameraPoseFn pose = [&w](int64_t frame, int camera) {
     return w.T_w_c(frame, camera);

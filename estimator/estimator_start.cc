@@ -158,35 +158,45 @@ bool Estimator::StartFromInitialWindow(const InitialWindow& start,
   return true;
 }
 
-bool Estimator::BuildWindow(const InitialWindow& start, bool restart) {
-  features_ = FeatureManager(window_.num_cameras);
-  for (const InitialFrame& s : start.frames) {
+bool Estimator::AppendInitialFrames(const std::vector<InitialFrame>& frames,
+                                    const std::vector<ImuSample>& imu,
+                                    Window* w, FeatureManager* features,
+                                    int64_t* next_id, int64_t* skipped) const {
+  for (const InitialFrame& s : frames) {
     auto f = std::make_unique<WindowFrame>();
-    if (!window_.frames.empty()) {
-      const WindowFrame& prev = *window_.frames.back();
+    if (!w->frames.empty()) {
+      const WindowFrame& prev = *w->frames.back();
       try {
         f->imu = std::make_unique<ImuPreintegration>(
-            prev.t_imu_ns, s.t_imu_ns, imu_,
+            prev.t_imu_ns, s.t_imu_ns, imu,
             Eigen::Vector3d(prev.speed_bias.data() + kSbBa), prev.b_g_value(),
             noise_, preintegration_);
       } catch (const std::invalid_argument&) {
         return false;
       }
     }
-    f->id = next_frame_id_++;
+    f->id = (*next_id)++;
     f->t_ns = s.t_ns;
     f->t_imu_ns = s.t_imu_ns;
-    f->t_d_at_stamp = window_.t_d;
-    f->gyr_b = GyroscopeAt(imu_, s.t_imu_ns);
+    f->t_d_at_stamp = w->t_d;
+    f->gyr_b = GyroscopeAt(imu, s.t_imu_ns);
     f->keyframe = true;
     f->p_w_b() = s.p_w_b;
     f->q_w_b() = s.q_w_b.normalized();
     f->v_w() = s.v_w;
     f->b_a() = s.b_a;
     f->b_g() = s.b_g;
-    summary_.observations_skipped +=
-        features_.AddFrame(f->id, s.observations).skipped;
-    window_.frames.push_back(std::move(f));
+    *skipped += features->AddFrame(f->id, s.observations).skipped;
+    w->frames.push_back(std::move(f));
+  }
+  return true;
+}
+
+bool Estimator::BuildWindow(const InitialWindow& start, bool restart) {
+  features_ = FeatureManager(window_.num_cameras);
+  if (!AppendInitialFrames(start.frames, imu_, &window_, &features_,
+                           &next_frame_id_, &summary_.observations_skipped)) {
+    return false;
   }
   // The initialiser's points become inverse depths in their anchors; the
   // other landmarks are triangulated as usual.
