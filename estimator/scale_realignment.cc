@@ -9,7 +9,10 @@ namespace {
 // Frames tried between two attempts once the realignment is due.
 constexpr int kRetryFrames = 5;
 
-double SpreadOf(const std::vector<Eigen::Vector3d>& p) {
+}  // namespace
+
+double PositionSpread(const std::vector<Eigen::Vector3d>& p) {
+  if (p.empty()) return 0.0;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& x : p) c += x;
   c /= static_cast<double>(p.size());
@@ -17,8 +20,6 @@ double SpreadOf(const std::vector<Eigen::Vector3d>& p) {
   for (const Eigen::Vector3d& x : p) s += (x - c).squaredNorm();
   return std::sqrt(s / static_cast<double>(p.size()));
 }
-
-}  // namespace
 
 double SpreadRatio(const std::vector<InitialFrame>& reference,
                    const Window& window, int min_frames, int* common) {
@@ -41,7 +42,7 @@ double SpreadRatio(const std::vector<InitialFrame>& reference,
   }
   *common = static_cast<int>(ref.size());
   if (*common < min_frames) return 0.0;
-  const double s_ref = SpreadOf(ref), s_win = SpreadOf(win);
+  const double s_ref = PositionSpread(ref), s_win = PositionSpread(win);
   if (!(s_ref > 0.0 && s_win > 0.0)) return 0.0;
   return s_ref / s_win;
 }

@@ -49,7 +49,11 @@ struct RealignmentRecord {
   bool applied = false;  // |scale - 1| reached realign_min_change
 };
 
-// The spread (RMS distance from the centroid, estimator/scale_uncertainty.h)
+// The RMS distance of positions from their centroid (0 for none): the
+// spread a scale is compared by, blind to position and yaw.
+double PositionSpread(const std::vector<Eigen::Vector3d>& p);
+
+// The spread (PositionSpread; its uncertainty: estimator/scale_uncertainty.h)
 // of `reference`'s positions over its frames within the window's time span,
 // divided by that of the window's positions interpolated linearly in time at
 // the same stamps (t_imu_ns). 0 when fewer than `min_frames` such frames or

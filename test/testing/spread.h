@@ -6,18 +6,14 @@
 // frames; the spread ignores the gauge (position and yaw) the two differ by.
 
 #include <Eigen/Core>
-#include <cmath>
 #include <vector>
+
+#include "estimator/scale_realignment.h"
 
 namespace vio::testing {
 
 inline double Spread(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& x : p) c += x;
-  c /= static_cast<double>(p.size());
-  double s = 0.0;
-  for (const Eigen::Vector3d& x : p) s += (x - c).squaredNorm();
-  return std::sqrt(s / static_cast<double>(p.size()));
+  return PositionSpread(p);  // estimator/scale_realignment.h
 }
 
 }  // namespace vio::testing
