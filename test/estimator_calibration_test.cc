@@ -18,21 +18,7 @@ namespace {
 
 using testing::SimReplay;
 
-// config/sim_aggressive.yaml's motion (up to ~2.9 m/s, ~1.8 rad/s) and track
-// drops, `seconds` long, with the given camera-IMU offset [s].
-SimulatorOptions AggressiveSimulation(double seconds, double t_d) {
-  SimulatorOptions o = testing::ShortSimulation(seconds, false);
-  o.motion.still_duration_s = 1.0;
-  o.motion.blend_duration_s = 1.5;
-  o.motion.lap_period_s = 7.0;
-  o.motion.height_amplitude_m = 0.6;
-  o.motion.roll_amplitude_rad = 0.35;
-  o.motion.pitch_amplitude_rad = 0.35;
-  o.motion.yaw_amplitude_rad = 0.6;
-  o.camera.track_drop_probability = 0.06;
-  o.camera.time_offset_s = t_d;
-  return o;
-}
+using testing::AggressiveSimulation;
 
 double RotationDeg(const Eigen::Matrix3d& R) {
   return Log(R).norm() * 180.0 / M_PI;
@@ -48,7 +34,7 @@ double RotationDeg(const Eigen::Matrix3d& R) {
 // against 0.0162 m.
 TEST(EstimatorCalibration, TimeOffsetConvergesToTheTruthUnderNoise) {
   const double truth = 0.005;  // [s]
-  const Simulation sim = Simulate(AggressiveSimulation(12.0, truth));
+  const Simulation sim = Simulate(AggressiveSimulation(12.0, false, truth));
   // The built-in defaults: world points (keep_point_fej) take the time
   // shift too (factors/timed_world_point_factor.h); the stereo case below
   // runs reuse, estimator_keep_point_time_offset_test stereo with world
@@ -78,9 +64,7 @@ TEST(EstimatorCalibration, TimeOffsetConvergesToTheTruthUnderNoise) {
 // shipped stereo files' keep_point_fej: estimator_keep_point_time_offset_test.)
 TEST(EstimatorCalibration, TimeOffsetConvergesWithStereo) {
   const double truth = 0.005;  // [s]
-  SimulatorOptions options = AggressiveSimulation(12.0, truth);
-  options.camera.stereo = true;
-  const Simulation sim = Simulate(options);
+  const Simulation sim = Simulate(AggressiveSimulation(12.0, true, truth));
   EstimatorOptions estimated = testing::OptionsFor(sim.options);
   estimated.landmarks.reanchored_tracks = ReanchoredTracks::kReuse;
   estimated.estimate_time_offset = true;
@@ -116,7 +100,7 @@ TEST(EstimatorCalibration, TimeOffsetConvergesWithStereo) {
 // the end of the still start; a reset keeps the extrinsic estimate, so at
 // most one is allowed.
 TEST(EstimatorCalibration, ExtrinsicConvergesFromAPerturbedStart) {
-  const Simulation sim = Simulate(AggressiveSimulation(20.0, 0.0));
+  const Simulation sim = Simulate(AggressiveSimulation(20.0, false, 0.0));
   const std::vector<EstimatorCamera> truth = testing::Prepare(sim).cameras;
   std::vector<EstimatorCamera> perturbed = truth;
   const Eigen::Vector3d axis = Eigen::Vector3d(1.0, -2.0, 1.5).normalized();
@@ -155,7 +139,7 @@ TEST(EstimatorCalibration, ExtrinsicConvergesFromAPerturbedStart) {
 // wander at most 1.9 cm (3.0 deg at one step), ATE 0.0275 m.
 TEST(EstimatorCalibration,
      ExtrinsicStartedAtTheTruthNeitherWandersNorCostsMuchAccuracy) {
-  const Simulation sim = Simulate(AggressiveSimulation(12.0, 0.0));
+  const Simulation sim = Simulate(AggressiveSimulation(12.0, false, 0.0));
   const testing::PreparedSimulation prepared = testing::Prepare(sim);
   const Eigen::Isometry3d truth = prepared.cameras[0].T_b_c;
   EstimatorOptions options = testing::OptionsFor(sim.options);

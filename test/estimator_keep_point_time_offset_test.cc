@@ -24,19 +24,11 @@ using testing::SimReplay;
 
 constexpr double kTruth = 0.005;  // [s]
 
-// estimator_calibration_test's AggressiveSimulation, stereo, this seed.
+// The calibration test's aggressive motion (testing::AggressiveSimulation),
+// stereo, this seed.
 Simulation AggressiveStereo(uint32_t seed) {
-  SimulatorOptions o = testing::ShortSimulation(12.0, true);
+  SimulatorOptions o = testing::AggressiveSimulation(12.0, true, kTruth);
   o.seed = seed;
-  o.motion.still_duration_s = 1.0;
-  o.motion.blend_duration_s = 1.5;
-  o.motion.lap_period_s = 7.0;
-  o.motion.height_amplitude_m = 0.6;
-  o.motion.roll_amplitude_rad = 0.35;
-  o.motion.pitch_amplitude_rad = 0.35;
-  o.motion.yaw_amplitude_rad = 0.6;
-  o.camera.track_drop_probability = 0.06;
-  o.camera.time_offset_s = kTruth;
   return Simulate(o);
 }
 

@@ -36,32 +36,43 @@ FactorInstance MakeWorldPointReprojection(const VisualScene& s, bool camera1) {
   return f;
 }
 
+namespace {
+
+// Half realistic, half centimetres in front of the target camera; camera 0
+// or camera 1 (*camera1) of keyframe j. The draws in this order, as each
+// case made them.
+VisualScene SampleWorldPointScene(std::mt19937& rng, bool timed,
+                                  bool* camera1) {
+  const bool near = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+  *camera1 = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+  return SampleVisualScene(
+      rng,
+      near ? VisualGeometry::kNearTargetCamera : VisualGeometry::kRealistic,
+      *camera1 ? VisualTarget::kStereoOtherFrame
+               : VisualTarget::kMonoOtherFrame,
+      timed, 1.5);
+}
+
+}  // namespace
+
 FactorCase MakeWorldPointReprojectionCase() {
   FactorCase c;
   c.name = "world_point";
   c.description =
       "reprojection of a world point, cam0 or cam1 [pose, T_b_c, p_w]";
   c.sample = [](std::mt19937& rng) {
-    // Half realistic, half centimetres in front of the target camera;
-    // camera 0 or camera 1 of keyframe j.
-    const bool near = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
-    const bool camera1 = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
-    const VisualScene s = SampleVisualScene(
-        rng,
-        near ? VisualGeometry::kNearTargetCamera : VisualGeometry::kRealistic,
-        camera1 ? VisualTarget::kStereoOtherFrame
-                : VisualTarget::kMonoOtherFrame,
-        /*timed=*/false, 1.5);
+    bool camera1 = false;
+    const VisualScene s = SampleWorldPointScene(rng, /*timed=*/false, &camera1);
     return MakeWorldPointReprojection(s, camera1);
   };
   return c;
 }
 
 FactorInstance MakeTimedWorldPointReprojection(const VisualScene& s,
-                                              bool camera1) {
+                                               bool camera1) {
   FactorInstance f = MakeWorldPointReprojection(s, camera1);
-  f.cost = std::make_unique<TimedWorldPointReprojectionFactor>(s.obs_j,
-                                                               s.sqrt_info);
+  f.cost =
+      std::make_unique<TimedWorldPointReprojectionFactor>(s.obs_j, s.sqrt_info);
   f.blocks.push_back({s.t_d});
   f.manifolds.push_back(nullptr);
   f.block_names.push_back("t_d");
@@ -74,14 +85,8 @@ FactorCase MakeTimedWorldPointReprojectionCase() {
   c.description =
       "world_point with time offset, cam0 or cam1 [pose, T_b_c, p_w, t_d]";
   c.sample = [](std::mt19937& rng) {
-    const bool near = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
-    const bool camera1 = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
-    const VisualScene s = SampleVisualScene(
-        rng,
-        near ? VisualGeometry::kNearTargetCamera : VisualGeometry::kRealistic,
-        camera1 ? VisualTarget::kStereoOtherFrame
-                : VisualTarget::kMonoOtherFrame,
-        /*timed=*/true, 1.5);
+    bool camera1 = false;
+    const VisualScene s = SampleWorldPointScene(rng, /*timed=*/true, &camera1);
     return MakeTimedWorldPointReprojection(s, camera1);
   };
   return c;

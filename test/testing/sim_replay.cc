@@ -21,6 +21,20 @@ SimulatorOptions ShortSimulation(double seconds, bool stereo) {
   return o;
 }
 
+SimulatorOptions AggressiveSimulation(double seconds, bool stereo, double t_d) {
+  SimulatorOptions o = ShortSimulation(seconds, stereo);
+  o.motion.still_duration_s = 1.0;
+  o.motion.blend_duration_s = 1.5;
+  o.motion.lap_period_s = 7.0;
+  o.motion.height_amplitude_m = 0.6;
+  o.motion.roll_amplitude_rad = 0.35;
+  o.motion.pitch_amplitude_rad = 0.35;
+  o.motion.yaw_amplitude_rad = 0.6;
+  o.camera.track_drop_probability = 0.06;
+  o.camera.time_offset_s = t_d;
+  return o;
+}
+
 EstimatorOptions OptionsFor(const SimulatorOptions& simulation) {
   EstimatorOptions o;
   o.use_stereo = simulation.camera.stereo;

@@ -28,6 +28,11 @@ struct SimReplay {
 // A short simulation with a still start: `seconds` long, mono or stereo.
 SimulatorOptions ShortSimulation(double seconds, bool stereo);
 
+// config/sim_aggressive.yaml's motion (up to ~2.9 m/s, ~1.8 rad/s) and track
+// drops after a 1 s still start, `seconds` long, mono or stereo, with the
+// camera-IMU offset t_d [s].
+SimulatorOptions AggressiveSimulation(double seconds, bool stereo, double t_d);
+
 // The estimator options for a simulation (use_stereo as the simulation).
 EstimatorOptions OptionsFor(const SimulatorOptions& simulation);
 
